@@ -1,0 +1,64 @@
+// The derivation engine: parallel rewriting of a module string, step by step.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <optional>
+
+#include "graftal/lsystem.hpp"
+#include "graftal/module_string.hpp"
+
+namespace graftal {
+
+struct DerivationOptions {
+    // Bytes the module strings may take; a step that would need more is refused before
+    // anything is allocated, with a message saying how large the string would get.
+    std::size_t memoryLimit = std::size_t(2) << 30;
+    std::optional<std::uint64_t> seed;  // overrides the file's seed
+    unsigned threads = 0;               // 0: one per core. The output never depends on it.
+    // Answers ?E modules. nullptr: the one the file's `environment:` lines describe (if any).
+    Environment* environment = nullptr;
+};
+
+class Derivation {
+public:
+    Derivation(const LSystem& lsystem, DerivationOptions options = {});
+    ~Derivation();
+    Derivation(const Derivation&) = delete;
+    Derivation& operator=(const Derivation&) = delete;
+
+    // Performs one derivation step. Throws Error when a limit would be exceeded or an
+    // expression fails; the current string is then left as it was.
+    void step();
+    void run(int steps);
+
+    int stepsDone() const { return steps_; }
+    const ModuleString& current() const { return *current_; }
+    ModuleString take() { return std::move(*current_); }
+
+private:
+    void afterStep(int stepNumber);
+    void pruneCuts();
+    void decompose(int stepNumber);
+    void answerQueries(int stepNumber);
+
+    const LSystem& lsystem_;
+    DerivationOptions options_;
+    std::unique_ptr<ModuleString> current_, next_;
+    std::unique_ptr<class RewritingEngine> rules_, decomposition_;
+    std::unique_ptr<Environment> ownedEnvironment_;
+    Environment* environment_ = nullptr;
+    bool queries_ = false;
+    int steps_ = 0;
+};
+
+// Derives `steps` steps from the axiom (steps < 0: the file's derivation length).
+ModuleString derive(const LSystem& lsystem, int steps = -1, DerivationOptions options = {});
+
+// The string the turtle sees: `modules` with the homomorphism productions applied
+// recursively (up to the homomorphism's maximum depth). A copy when there are none.
+ModuleString applyHomomorphism(const LSystem& lsystem, const ModuleString& modules,
+                               DerivationOptions options = {});
+
+}  // namespace graftal

@@ -1,0 +1,61 @@
+// Errors are values carrying a source location; the library never prints or exits.
+#pragma once
+
+#include <ostream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace graftal {
+
+struct SourceLocation {
+    std::string file;  // empty when the text did not come from a file
+    int line = 0;      // 1-based; 0 means "no position in the text"
+    int column = 0;    // 1-based, counted in bytes
+
+    std::string toString() const;
+};
+
+enum class Severity { Error, Warning, Note };
+
+struct Diagnostic {
+    Severity severity = Severity::Error;
+    SourceLocation location;
+    std::string message;
+
+    // "file:line:column: error: message", the form compilers and editors understand.
+    std::string toString() const;
+};
+
+std::ostream& operator<<(std::ostream& os, const SourceLocation& loc);
+std::ostream& operator<<(std::ostream& os, const Diagnostic& d);
+
+// Collects diagnostics so that a parser can report several problems in one pass.
+class DiagnosticList {
+public:
+    void error(SourceLocation loc, std::string message);
+    void warning(SourceLocation loc, std::string message);
+    void add(Diagnostic d) { items_.push_back(std::move(d)); }
+
+    bool hasErrors() const;
+    const std::vector<Diagnostic>& items() const { return items_; }
+    std::string toString() const;
+
+private:
+    std::vector<Diagnostic> items_;
+};
+
+// The one exception family of the library. It carries every diagnostic that led to it.
+class Error : public std::runtime_error {
+public:
+    explicit Error(Diagnostic d);
+    explicit Error(std::vector<Diagnostic> ds);
+    Error(SourceLocation loc, const std::string& message);
+
+    const std::vector<Diagnostic>& diagnostics() const { return diagnostics_; }
+
+private:
+    std::vector<Diagnostic> diagnostics_;
+};
+
+}  // namespace graftal

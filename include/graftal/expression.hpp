@@ -1,0 +1,77 @@
+// Arithmetic expressions of the .l language, compiled once to a small stack program.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <ostream>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "graftal/diagnostics.hpp"
+
+namespace graftal {
+
+// What a running expression may need besides its variables: random numbers from the
+// L-system's counter-based stream. Deterministic code passes nullptr.
+struct EvalContext {
+    // Returns a uniform number in [0, 1); called once per ran()/nran() evaluation.
+    std::function<double()> uniform;
+};
+
+class Expression {
+public:
+    enum class Op : std::uint8_t {
+        Const, Var, Neg, Not, Add, Sub, Mul, Div, Mod, Pow,
+        Lt, Le, Gt, Ge, Eq, Ne, And, Or,
+        Call1, Call2, Ran, Nran, JumpIfFalse, JumpIfTrue, Jump, Pop,
+    };
+    struct Instr {
+        Op op;
+        std::uint8_t fn = 0;     // function id for Call1/Call2
+        std::uint32_t arg = 0;   // constant index, variable slot, or jump target
+    };
+
+    Expression() = default;
+
+    // Evaluates with `slots` holding the bound variables. Throws Error (with this
+    // expression's location) on a division by zero or a domain error.
+    double evaluate(std::span<const double> slots, const EvalContext* ctx = nullptr) const;
+
+    bool isConstant() const { return code_.size() == 1 && code_[0].op == Op::Const; }
+    bool empty() const { return code_.empty(); }
+    bool usesRandom() const { return usesRandom_; }
+    const std::string& text() const { return text_; }
+    const SourceLocation& location() const { return location_; }
+    void print(std::ostream& os) const { os << text_; }
+
+private:
+    friend class ExpressionCompiler;
+    std::vector<Instr> code_;
+    std::vector<double> constants_;
+    std::string text_;
+    SourceLocation location_;
+    bool usesRandom_ = false;
+    std::uint32_t maxStack_ = 0;
+};
+
+std::ostream& operator<<(std::ostream& os, const Expression& e);
+
+// Names an expression may use: formal parameters (slots) and #define constants.
+struct ExpressionScope {
+    std::vector<std::string> variables;               // slot i is variables[i]
+    const std::map<std::string, std::string>* defines = nullptr;  // NAME -> expression text
+};
+
+// Compiles `text` (which starts at `loc`). Problems go to `diags` with exact columns; the
+// returned expression is then empty.
+Expression compileExpression(std::string_view text, const SourceLocation& loc,
+                             const ExpressionScope& scope, DiagnosticList& diags);
+
+// Convenience for constant expressions (view settings, derivation length): throws Error.
+double evaluateConstant(std::string_view text, const SourceLocation& loc,
+                        const std::map<std::string, std::string>& defines);
+
+}  // namespace graftal

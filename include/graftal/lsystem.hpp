@@ -1,0 +1,116 @@
+// The compiled L-system: what the parser produces and the derivation engine runs.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "graftal/diagnostics.hpp"
+#include "graftal/environment.hpp"
+#include "graftal/expression.hpp"
+#include "graftal/module_string.hpp"
+
+namespace graftal {
+
+// How the picture is drawn: the view settings a .l file may carry.
+struct ViewSettings {
+    double angleDegrees = 90;      // δ, the turn of + and -
+    double stepLength = 1;         // length of F and f
+    double initialHeading = 0;     // degrees counter-clockwise from up (+y)
+    double scaleFactor = 100;      // pfg's picture size in percent of the window
+    bool clockwisePlus = false;    // pfg data files: + turns right on screen
+};
+
+std::ostream& operator<<(std::ostream& os, const ViewSettings& v);
+
+// One module of a predecessor or context: a symbol and the names of its formal parameters.
+struct ModulePattern {
+    Symbol symbol = 0;
+    std::vector<std::string> formals;
+    SourceLocation location;
+};
+
+// One module of a successor: a symbol and one compiled expression per parameter.
+struct SuccessorModule {
+    Symbol symbol = 0;
+    std::vector<Expression> args;
+};
+
+struct Production {
+    std::vector<ModulePattern> left;         // left context, in string order
+    std::vector<ModulePattern> predecessor;  // strict predecessor (pfg allows several)
+    std::vector<ModulePattern> right;        // right context
+    std::optional<Expression> condition;
+    std::vector<SuccessorModule> successor;  // empty for *
+    std::optional<Expression> probability;
+    SourceLocation location;
+    int slotCount = 0;                       // formal parameters bound, in all three parts
+    int table = -1;                          // index into LSystem::tableNames; -1: every table
+
+    bool hasContext() const { return !left.empty() || !right.empty(); }
+    bool isParametric() const;
+    void print(std::ostream& os, const SymbolTable& symbols) const;
+};
+
+// One entry of a table schedule: use `table` for `steps` derivation steps (-1: for ever).
+struct ScheduleEntry {
+    int table = 0;
+    int steps = -1;
+};
+
+class LSystem {
+public:
+    std::string name;                 // the `Lsystem:` label (the file name if none)
+    std::string file;                 // where it was read from: used in error locations
+    SymbolTable symbols;
+    ModuleString axiom;
+    std::vector<Production> productions;
+    // cpfg's sub-sections: decomposition is applied after every step (and to the axiom),
+    // homomorphism only when the string is interpreted. Both recurse up to their depth.
+    std::vector<Production> decomposition, homomorphism;
+    int decompositionDepth = 1, homomorphismDepth = 1;
+    // Table L-systems: named production tables and the schedule that picks one per step.
+    std::vector<std::string> tableNames;
+    std::vector<ScheduleEntry> schedule;
+    bool scheduleRepeats = false;
+    int derivationLength = 0;
+    // For context matching: symbols treated as absent. `consider:` is turned into its
+    // complement here, so the engine only ever looks at this table.
+    std::vector<bool> ignored = std::vector<bool>(kMaxSymbols, false);
+    std::uint64_t seed = 0;
+    ViewSettings view;
+    bool legacyPfg = false;           // read as a pfg data file (no Lsystem: header)
+    std::vector<EnvironmentLine> environment;  // `environment:` lines, in file order
+    std::map<std::string, std::string> defines;
+    std::vector<Diagnostic> warnings; // what the parser noticed but accepted
+
+    // The table used by derivation step `step` (1-based); 0 when there are no tables.
+    int tableForStep(int step) const;
+    bool usesCut() const;  // any '%' in the axiom or a successor
+    bool hasContext() const;
+    bool hasMultiModulePredecessor() const;
+    bool isParametric() const;
+    // Prints the L-system back in the .l language.
+    void print(std::ostream& os) const;
+};
+
+std::ostream& operator<<(std::ostream& os, const LSystem& ls);
+
+struct ParseOptions {
+    std::string fileName;                        // used in locations
+    std::map<std::string, std::string> defines;  // -D NAME=VALUE; wins over #define
+};
+
+// Parses .l text. Collects every diagnostic it can and throws Error carrying all of them
+// if any is an error; warnings end up in LSystem::warnings.
+LSystem parseLSystem(std::string_view text, const ParseOptions& options = {});
+
+// Reads and parses a file (ParseOptions::fileName defaults to the path).
+LSystem loadLSystem(const std::filesystem::path& path, ParseOptions options = {});
+
+}  // namespace graftal

@@ -1,0 +1,95 @@
+#!/usr/bin/env bash
+# Renders every examples/*.l to OUTDIR/<name>.png (800x800) and writes OUTDIR/index.md,
+# a markdown table of thumbnails with the figure names.
+#
+#   scripts/render_gallery.sh GRAFTAL_EXE OUTDIR
+#
+# Prints one line per picture; exits non-zero if any render fails (after trying all).
+set -uo pipefail
+
+if [ $# -ne 2 ]; then
+    echo "usage: $0 GRAFTAL_EXE OUTDIR" >&2
+    exit 2
+fi
+
+exe=$1
+outdir=$2
+here=$(cd "$(dirname "$0")/.." && pwd)
+examples="$here/examples"
+
+if [ ! -x "$exe" ]; then
+    echo "render_gallery: $exe is not an executable (build graftal first)" >&2
+    exit 2
+fi
+shopt -s nullglob
+files=("$examples"/*.l)
+# Figure order (fig2.2 before fig2.13), whatever the locale.
+if [ ${#files[@]} -gt 0 ]; then
+    mapfile -t files < <(printf '%s\n' "${files[@]}" | LC_ALL=C sort -V)
+fi
+if [ ${#files[@]} -eq 0 ]; then
+    echo "render_gallery: no examples in $examples" >&2
+    exit 2
+fi
+mkdir -p "$outdir" || exit 2
+
+# The caption of a picture: the leading /* */ comment up to "(seed" (or its first
+# sentence), e.g. "Fig 2.2 Generating a quadratic Koch island"; pfg data files have no
+# comment and get a caption from their name.
+caption() {
+    local file=$1 name=$2 text
+    text=$(awk 'NR == 1 && !/^\/\*/ { exit } { print } /\*\// { exit }' "$file" |
+           tr '\n' ' ' | sed -e 's|^/\*[[:space:]]*||' -e 's|\*/.*$||' -e 's/[[:space:]]\+/ /g')
+    if [ -n "$text" ]; then
+        case $text in
+            *" (seed"*) text=${text%%" (seed"*} ;;
+            *". "*) text=${text%%". "*} ;;
+        esac
+        printf '%s' "${text% }"
+    else
+        case $name in
+            fig3.11?-hogeweg-hesper)
+                printf 'Fig 3.11%s L-system of Hogeweg and Hesper (pfg data file)' "${name:7:1}" ;;
+            appendixA-pfg-example) printf 'Appendix A example data file (pfg)' ;;
+            fig2.6-dragon-curve-pfg) printf 'Fig 2.6 The dragon curve, Fl/rF predecessors (pfg data file)' ;;
+            *) printf '%s (pfg data file)' "$name" ;;
+        esac
+    fi
+}
+
+failed=0
+rendered=0
+index="$outdir/index.md"
+{
+    echo "# graftal gallery"
+    echo
+    echo "The example L-systems of *Lindenmayer Systems, Fractals, and Plants*"
+    echo "(Prusinkiewicz & Hanan), rendered by \`scripts/render_gallery.sh\` from"
+    echo "\`examples/*.l\`. Click a picture for the 800x800 image."
+    echo
+    echo "| picture | figure | file |"
+    echo "| --- | --- | --- |"
+} > "$index.tmp"
+
+for file in "${files[@]}"; do
+    name=$(basename "$file" .l)
+    out="$outdir/$name.png"
+    start=${EPOCHREALTIME:-0}
+    if msg=$("$exe" render "$file" -o "$out" --size 800x800 2>&1) && [ -s "$out" ]; then
+        end=${EPOCHREALTIME:-0}
+        printf 'ok    %-40s -> %s (%s s)\n' "$name.l" "$out" \
+            "$(awk -v a="$start" -v b="$end" 'BEGIN { printf "%.2f", b - a }')"
+        rendered=$((rendered + 1))
+        printf '| [<img src="%s.png" width="160" alt="%s">](%s.png) | %s | `examples/%s.l` |\n' \
+            "$name" "$name" "$name" "$(caption "$file" "$name")" "$name" >> "$index.tmp"
+    else
+        printf 'FAIL  %-40s %s\n' "$name.l" "$(printf '%s' "$msg" | head -n 3 | tr '\n' ' ')"
+        failed=$((failed + 1))
+        printf '| (render failed) | %s | `examples/%s.l` |\n' \
+            "$(caption "$file" "$name")" "$name" >> "$index.tmp"
+    fi
+done
+mv "$index.tmp" "$index"
+
+echo "$rendered rendered, $failed failed; index: $index"
+[ "$failed" -eq 0 ]

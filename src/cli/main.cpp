@@ -1,0 +1,85 @@
+// The graftal command: formats the library's errors, the library itself never prints.
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "commands.hpp"
+#include "graftal/diagnostics.hpp"
+
+namespace {
+
+void addInputOptions(CLI::App& cmd, graftal::cli::InputOptions& in, std::string& memoryLimit) {
+    cmd.add_option("file", in.file, "L-system file (.l)")->required();
+    cmd.add_option("-n,--steps", in.steps, "derivation length (overrides the file)");
+    cmd.add_option("-D,--define", [&in](const CLI::results_t& rs) {
+           for (const auto& r : rs) {
+               auto eq = r.find('=');
+               if (eq == std::string::npos || eq == 0)
+                   throw CLI::ValidationError("-D", "expected NAME=VALUE, got '" + r + "'");
+               in.defines[r.substr(0, eq)] = r.substr(eq + 1);
+           }
+           return true;
+       }, "set a #define constant, NAME=VALUE (repeatable)")
+        ->type_name("NAME=VALUE")
+        ->allow_extra_args(false)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+    cmd.add_option("--seed", in.seed, "random seed for stochastic L-systems");
+    cmd.add_option("--memory-limit", memoryLimit, "largest string memory, e.g. 2G (default 2G)");
+    cmd.add_option("--threads", in.threads, "worker threads (default: all cores)");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"graftal: Lindenmayer systems, derived and drawn"};
+    app.require_subcommand(1);
+    app.set_version_flag("--version", "graftal 0.1.0");
+
+    graftal::cli::InputOptions in;
+    std::string memoryLimit;
+    graftal::cli::RenderCommandOptions out;
+    bool noGeometry = false, homomorphism = false;
+    std::string size, background, color;
+
+    auto* derive = app.add_subcommand("derive", "print the derived module string");
+    addInputOptions(*derive, in, memoryLimit);
+    derive->add_flag("--homo", homomorphism, "print the string after the homomorphism");
+
+    auto* stats = app.add_subcommand("stats", "print counts and bounds as JSON");
+    addInputOptions(*stats, in, memoryLimit);
+    stats->add_flag("--no-geometry", noGeometry, "derive and count only, no turtle");
+
+    auto* render = app.add_subcommand("render", "draw the L-system to .svg, .png or .pdf");
+    addInputOptions(*render, in, memoryLimit);
+    render->add_option("-o,--output", out.output, "output picture (.svg, .png, .pdf)")->required();
+    render->add_option("--size", size, "picture size WxH in pixels (default 800x800)");
+    render->add_option("--line-width", out.render.lineWidth, "line width in pixels");
+    render->add_option("--background", background, "background colour, #rrggbb");
+    render->add_option("--color", color, "line colour, #rrggbb (default: the palette)");
+    render->add_option("--margin", out.render.margin, "margin, fraction of the picture")
+        ->check(CLI::Range(0.0, 0.45));
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    }
+
+    try {
+        if (!memoryLimit.empty()) in.memoryLimit = graftal::cli::parseByteSize(memoryLimit);
+        if (*derive) return graftal::cli::runDerive(in, homomorphism);
+        if (*stats) return graftal::cli::runStats(in, !noGeometry);
+        if (!size.empty()) graftal::cli::parseImageSize(size, out.render.width, out.render.height);
+        if (!background.empty()) out.render.background = graftal::cli::parseColor(background);
+        if (!color.empty()) out.render.lineColor = graftal::cli::parseColor(color);
+        return graftal::cli::runRender(in, out);
+    } catch (const graftal::Error& e) {
+        for (const auto& d : e.diagnostics()) std::cerr << d.toString() << '\n';
+        return 1;
+    } catch (const std::bad_alloc&) {
+        std::cerr << "graftal: error: out of memory (lower -n or --memory-limit)\n";
+        return 1;
+    } catch (const std::exception& e) {
+        std::cerr << "graftal: error: " << e.what() << '\n';
+        return 1;
+    }
+}

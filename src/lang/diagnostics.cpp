@@ -1,0 +1,72 @@
+#include "graftal/diagnostics.hpp"
+
+#include <sstream>
+
+namespace graftal {
+
+std::string SourceLocation::toString() const {
+    std::string s = file.empty() ? std::string("<input>") : file;
+    if (line > 0) {
+        s += ':' + std::to_string(line);
+        if (column > 0) s += ':' + std::to_string(column);
+    }
+    return s;
+}
+
+static const char* severityName(Severity s) {
+    switch (s) {
+        case Severity::Error: return "error";
+        case Severity::Warning: return "warning";
+        case Severity::Note: return "note";
+    }
+    return "error";
+}
+
+std::string Diagnostic::toString() const {
+    return location.toString() + ": " + severityName(severity) + ": " + message;
+}
+
+std::ostream& operator<<(std::ostream& os, const SourceLocation& loc) {
+    return os << loc.toString();
+}
+
+std::ostream& operator<<(std::ostream& os, const Diagnostic& d) { return os << d.toString(); }
+
+void DiagnosticList::error(SourceLocation loc, std::string message) {
+    items_.push_back({Severity::Error, std::move(loc), std::move(message)});
+}
+
+void DiagnosticList::warning(SourceLocation loc, std::string message) {
+    items_.push_back({Severity::Warning, std::move(loc), std::move(message)});
+}
+
+bool DiagnosticList::hasErrors() const {
+    for (const auto& d : items_)
+        if (d.severity == Severity::Error) return true;
+    return false;
+}
+
+std::string DiagnosticList::toString() const {
+    std::string s;
+    for (const auto& d : items_) s += d.toString() + '\n';
+    return s;
+}
+
+static std::string joinMessages(const std::vector<Diagnostic>& ds) {
+    std::string s;
+    for (size_t i = 0; i < ds.size(); ++i) {
+        if (i) s += '\n';
+        s += ds[i].toString();
+    }
+    return s;
+}
+
+Error::Error(Diagnostic d) : Error(std::vector<Diagnostic>{std::move(d)}) {}
+
+Error::Error(std::vector<Diagnostic> ds)
+    : std::runtime_error(joinMessages(ds)), diagnostics_(std::move(ds)) {}
+
+Error::Error(SourceLocation loc, const std::string& message)
+    : Error(Diagnostic{Severity::Error, std::move(loc), message}) {}
+
+}  // namespace graftal

@@ -1,0 +1,499 @@
+// Recursive-descent compiler from expression text to a postfix program, and its evaluator.
+#include "graftal/expression.hpp"
+
+#include <array>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <set>
+
+namespace graftal {
+
+namespace {
+
+constexpr double kDegree = 3.14159265358979323846 / 180.0;
+
+enum Fn1 : std::uint8_t {
+    FnSin, FnCos, FnTan, FnAsin, FnAcos, FnAtan, FnExp, FnLog, FnSqrt, FnFabs, FnFloor,
+    FnCeil, FnTrunc, FnSign,
+};
+enum Fn2 : std::uint8_t { FnAtan2, FnMin, FnMax };
+
+struct FunctionInfo {
+    const char* name;
+    int arity;
+    std::uint8_t id;
+};
+
+// cpfg's trigonometry works in degrees, and so do we.
+constexpr std::array kFunctions{
+    FunctionInfo{"sin", 1, FnSin},     FunctionInfo{"cos", 1, FnCos},
+    FunctionInfo{"tan", 1, FnTan},     FunctionInfo{"asin", 1, FnAsin},
+    FunctionInfo{"acos", 1, FnAcos},   FunctionInfo{"atan", 1, FnAtan},
+    FunctionInfo{"exp", 1, FnExp},     FunctionInfo{"log", 1, FnLog},
+    FunctionInfo{"sqrt", 1, FnSqrt},   FunctionInfo{"fabs", 1, FnFabs},
+    FunctionInfo{"abs", 1, FnFabs},    FunctionInfo{"floor", 1, FnFloor},
+    FunctionInfo{"ceil", 1, FnCeil},   FunctionInfo{"trunc", 1, FnTrunc},
+    FunctionInfo{"sign", 1, FnSign},   FunctionInfo{"atan2", 2, FnAtan2},
+    FunctionInfo{"min", 2, FnMin},     FunctionInfo{"max", 2, FnMax},
+    FunctionInfo{"ran", 1, 0},         FunctionInfo{"nran", 2, 0},
+};
+
+}  // namespace
+
+class ExpressionCompiler {
+public:
+    ExpressionCompiler(std::string_view text, const SourceLocation& loc,
+                       const ExpressionScope& scope, DiagnosticList& diags)
+        : text_(text), loc_(loc), scope_(scope), diags_(diags) {}
+
+    Expression compile() {
+        expr_.text_ = std::string(trim(text_));
+        expr_.location_ = loc_;
+        skipSpace();
+        if (pos_ >= text_.size()) {
+            fail(pos_, "expected an expression");
+        } else {
+            parseOr();
+            skipSpace();
+            if (!failed_ && pos_ < text_.size())
+                fail(pos_, "unexpected '" + std::string(1, text_[pos_]) +
+                               "' after the end of the expression");
+        }
+        if (failed_) return Expression{};
+        computeStackDepth();
+        return std::move(expr_);
+    }
+
+private:
+    static std::string_view trim(std::string_view s) {
+        while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
+        while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
+        return s;
+    }
+
+    SourceLocation at(std::size_t offset) const {
+        SourceLocation l = loc_;
+        if (l.line > 0) l.column += static_cast<int>(offset);
+        return l;
+    }
+
+    void fail(std::size_t offset, const std::string& msg) {
+        if (!failed_) diags_.error(at(offset), msg);
+        failed_ = true;
+    }
+
+    void skipSpace() {
+        while (pos_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[pos_]))) ++pos_;
+    }
+
+    bool accept(std::string_view tok) {
+        skipSpace();
+        if (text_.substr(pos_, tok.size()) == tok) {
+            pos_ += tok.size();
+            return true;
+        }
+        return false;
+    }
+
+    void emit(Expression::Op op, std::uint32_t arg = 0, std::uint8_t fn = 0) {
+        expr_.code_.push_back({op, fn, arg});
+    }
+
+    void emitConst(double v) {
+        expr_.constants_.push_back(v);
+        emit(Expression::Op::Const, static_cast<std::uint32_t>(expr_.constants_.size() - 1));
+    }
+
+    void parseOr() {
+        parseAnd();
+        while (!failed_ && accept("||")) {
+            std::size_t jump = expr_.code_.size();
+            emit(Expression::Op::JumpIfTrue);
+            parseAnd();
+            emit(Expression::Op::Ne, 0);  // normalise the right operand to 0/1
+            expr_.code_[jump].arg = static_cast<std::uint32_t>(expr_.code_.size());
+        }
+    }
+
+    void parseAnd() {
+        parseComparison();
+        while (!failed_ && accept("&&")) {
+            std::size_t jump = expr_.code_.size();
+            emit(Expression::Op::JumpIfFalse);
+            parseComparison();
+            emit(Expression::Op::Ne, 0);
+            expr_.code_[jump].arg = static_cast<std::uint32_t>(expr_.code_.size());
+        }
+    }
+
+    void parseComparison() {
+        parseAdditive();
+        while (!failed_) {
+            Expression::Op op;
+            if (accept("<=")) op = Expression::Op::Le;
+            else if (accept(">=")) op = Expression::Op::Ge;
+            else if (accept("==")) op = Expression::Op::Eq;
+            else if (accept("!=")) op = Expression::Op::Ne;
+            else if (accept("<")) op = Expression::Op::Lt;
+            else if (accept(">")) op = Expression::Op::Gt;
+            else if (peekSingle('=')) {
+                fail(pos_, "expected '==' for a comparison, found '='");
+                return;
+            } else return;
+            parseAdditive();
+            emit(op, 1);
+        }
+    }
+
+    bool peekSingle(char c) {
+        skipSpace();
+        return pos_ < text_.size() && text_[pos_] == c;
+    }
+
+    void parseAdditive() {
+        parseMultiplicative();
+        while (!failed_) {
+            if (accept("+")) { parseMultiplicative(); emit(Expression::Op::Add); }
+            else if (accept("-")) { parseMultiplicative(); emit(Expression::Op::Sub); }
+            else return;
+        }
+    }
+
+    void parseMultiplicative() {
+        parseUnary();
+        while (!failed_) {
+            if (accept("*")) { parseUnary(); emit(Expression::Op::Mul); }
+            else if (accept("/")) { parseUnary(); emit(Expression::Op::Div); }
+            else if (accept("%")) { parseUnary(); emit(Expression::Op::Mod); }
+            else return;
+        }
+    }
+
+    void parseUnary() {
+        if (accept("-")) { parseUnary(); emit(Expression::Op::Neg); return; }
+        if (accept("+")) { parseUnary(); return; }
+        skipSpace();
+        if (pos_ < text_.size() && text_[pos_] == '!' &&
+            text_.substr(pos_, 2) != "!=") {
+            ++pos_;
+            parseUnary();
+            emit(Expression::Op::Not);
+            return;
+        }
+        parsePower();
+    }
+
+    void parsePower() {
+        parsePrimary();
+        if (!failed_ && accept("^")) {
+            parseUnary();  // right-associative: 2^3^2 = 2^9
+            emit(Expression::Op::Pow);
+        }
+    }
+
+    void parsePrimary() {
+        skipSpace();
+        if (pos_ >= text_.size()) {
+            fail(pos_, "expected a number, a name or '(' but the expression ended");
+            return;
+        }
+        char c = text_[pos_];
+        if (c == '(') {
+            ++pos_;
+            parseOr();
+            if (!failed_ && !accept(")")) fail(pos_, "expected ')'");
+            return;
+        }
+        if (std::isdigit(static_cast<unsigned char>(c)) || c == '.') {
+            parseNumber();
+            return;
+        }
+        if (std::isalpha(static_cast<unsigned char>(c)) || c == '_') {
+            std::size_t start = pos_;
+            while (pos_ < text_.size() &&
+                   (std::isalnum(static_cast<unsigned char>(text_[pos_])) || text_[pos_] == '_'))
+                ++pos_;
+            std::string name(text_.substr(start, pos_ - start));
+            skipSpace();
+            if (pos_ < text_.size() && text_[pos_] == '(') {
+                parseCall(name, start);
+            } else {
+                parseName(name, start);
+            }
+            return;
+        }
+        fail(pos_, "expected a number, a name or '(' but found '" + std::string(1, c) + "'");
+    }
+
+    void parseNumber() {
+        std::size_t start = pos_;
+        while (pos_ < text_.size() &&
+               (std::isdigit(static_cast<unsigned char>(text_[pos_])) || text_[pos_] == '.'))
+            ++pos_;
+        if (pos_ < text_.size() && (text_[pos_] == 'e' || text_[pos_] == 'E')) {
+            std::size_t save = pos_++;
+            if (pos_ < text_.size() && (text_[pos_] == '+' || text_[pos_] == '-')) ++pos_;
+            if (pos_ < text_.size() && std::isdigit(static_cast<unsigned char>(text_[pos_]))) {
+                while (pos_ < text_.size() && std::isdigit(static_cast<unsigned char>(text_[pos_])))
+                    ++pos_;
+            } else {
+                pos_ = save;
+            }
+        }
+        double v = 0;
+        auto r = std::from_chars(text_.data() + start, text_.data() + pos_, v);
+        if (r.ec != std::errc() || r.ptr != text_.data() + pos_) {
+            fail(start, "malformed number '" + std::string(text_.substr(start, pos_ - start)) + "'");
+            return;
+        }
+        emitConst(v);
+    }
+
+    void parseName(const std::string& name, std::size_t start) {
+        for (std::size_t i = 0; i < scope_.variables.size(); ++i) {
+            if (scope_.variables[i] == name) {
+                emit(Expression::Op::Var, static_cast<std::uint32_t>(i));
+                return;
+            }
+        }
+        if (scope_.defines) {
+            auto it = scope_.defines->find(name);
+            if (it != scope_.defines->end()) {
+                if (expanding_.count(name)) {
+                    fail(start, "#define '" + name + "' refers to itself");
+                    return;
+                }
+                // A constant is compiled in place, as the C preprocessor would expand it,
+                // but parenthesised so that `#define N 1+2` gives 2*N == 6.
+                DiagnosticList inner;
+                ExpressionCompiler sub(it->second, at(start), scope_, inner);
+                sub.expanding_ = expanding_;
+                sub.expanding_.insert(name);
+                Expression e = sub.compile();
+                if (e.empty()) {
+                    fail(start, "#define '" + name + "' is not a valid expression: '" +
+                                    it->second + "'");
+                    return;
+                }
+                inlineProgram(e);
+                return;
+            }
+        }
+        fail(start, "unknown name '" + name + "'" +
+                        (scope_.variables.empty() ? std::string()
+                                                  : " (not a parameter of this production)"));
+    }
+
+    void inlineProgram(const Expression& e) {
+        auto base = static_cast<std::uint32_t>(expr_.code_.size());
+        auto cbase = static_cast<std::uint32_t>(expr_.constants_.size());
+        expr_.constants_.insert(expr_.constants_.end(), e.constants_.begin(), e.constants_.end());
+        for (auto in : e.code_) {
+            if (in.op == Expression::Op::Const) in.arg += cbase;
+            if (in.op == Expression::Op::JumpIfFalse || in.op == Expression::Op::JumpIfTrue ||
+                in.op == Expression::Op::Jump)
+                in.arg += base;
+            expr_.code_.push_back(in);
+        }
+        expr_.usesRandom_ |= e.usesRandom_;
+    }
+
+    void parseCall(const std::string& name, std::size_t start) {
+        const FunctionInfo* fn = nullptr;
+        for (const auto& f : kFunctions)
+            if (name == f.name) fn = &f;
+        if (!fn) {
+            fail(start, "unknown function '" + name + "'");
+            return;
+        }
+        ++pos_;  // '('
+        int count = 0;
+        skipSpace();
+        if (!(pos_ < text_.size() && text_[pos_] == ')')) {
+            do {
+                parseOr();
+                if (failed_) return;
+                ++count;
+            } while (accept(","));
+        }
+        if (!accept(")")) {
+            fail(pos_, "expected ')' or ',' in the arguments of " + name + "()");
+            return;
+        }
+        if (count != fn->arity) {
+            fail(start, name + "() takes " + std::to_string(fn->arity) + " argument" +
+                            (fn->arity == 1 ? "" : "s") + ", not " + std::to_string(count));
+            return;
+        }
+        if (name == "ran") {
+            emit(Expression::Op::Ran);
+            expr_.usesRandom_ = true;
+        } else if (name == "nran") {
+            emit(Expression::Op::Nran);
+            expr_.usesRandom_ = true;
+        } else {
+            emit(fn->arity == 1 ? Expression::Op::Call1 : Expression::Op::Call2, 0, fn->id);
+        }
+    }
+
+    void computeStackDepth() {
+        // Straight-line upper bound: every push counted, pops subtracted.
+        int depth = 0, maxDepth = 0;
+        for (const auto& in : expr_.code_) {
+            switch (in.op) {
+                case Expression::Op::Const:
+                case Expression::Op::Var: ++depth; break;
+                case Expression::Op::Neg:
+                case Expression::Op::Not:
+                case Expression::Op::Call1:
+                case Expression::Op::Ran:
+                case Expression::Op::Jump: break;
+                case Expression::Op::JumpIfFalse:
+                case Expression::Op::JumpIfTrue:
+                case Expression::Op::Pop: --depth; break;
+                default:
+                    if (in.op == Expression::Op::Ne && in.arg == 0) break;  // normalise
+                    --depth;
+                    break;
+            }
+            maxDepth = std::max(maxDepth, depth);
+        }
+        expr_.maxStack_ = static_cast<std::uint32_t>(maxDepth + 2);
+    }
+
+    std::string_view text_;
+    SourceLocation loc_;
+    const ExpressionScope& scope_;
+    DiagnosticList& diags_;
+    std::size_t pos_ = 0;
+    bool failed_ = false;
+    std::set<std::string> expanding_;
+    Expression expr_;
+};
+
+Expression compileExpression(std::string_view text, const SourceLocation& loc,
+                             const ExpressionScope& scope, DiagnosticList& diags) {
+    return ExpressionCompiler(text, loc, scope, diags).compile();
+}
+
+double evaluateConstant(std::string_view text, const SourceLocation& loc,
+                        const std::map<std::string, std::string>& defines) {
+    DiagnosticList diags;
+    ExpressionScope scope;
+    scope.defines = &defines;
+    Expression e = compileExpression(text, loc, scope, diags);
+    if (diags.hasErrors()) throw Error(diags.items());
+    if (e.usesRandom()) throw Error(loc, "a constant cannot use ran() or nran()");
+    return e.evaluate({});
+}
+
+static double apply1(std::uint8_t fn, double x) {
+    switch (fn) {
+        case FnSin: return std::sin(x * kDegree);
+        case FnCos: return std::cos(x * kDegree);
+        case FnTan: return std::tan(x * kDegree);
+        case FnAsin: return std::asin(x) / kDegree;
+        case FnAcos: return std::acos(x) / kDegree;
+        case FnAtan: return std::atan(x) / kDegree;
+        case FnExp: return std::exp(x);
+        case FnLog: return std::log(x);
+        case FnSqrt: return std::sqrt(x);
+        case FnFabs: return std::fabs(x);
+        case FnFloor: return std::floor(x);
+        case FnCeil: return std::ceil(x);
+        case FnTrunc: return std::trunc(x);
+        case FnSign: return x > 0 ? 1.0 : (x < 0 ? -1.0 : 0.0);
+    }
+    return 0;
+}
+
+static double apply2(std::uint8_t fn, double a, double b) {
+    switch (fn) {
+        case FnAtan2: return std::atan2(a, b) / kDegree;
+        case FnMin: return std::min(a, b);
+        case FnMax: return std::max(a, b);
+    }
+    return 0;
+}
+
+double Expression::evaluate(std::span<const double> slots, const EvalContext* ctx) const {
+    std::array<double, 64> small;
+    std::vector<double> big;
+    double* st = small.data();
+    if (maxStack_ > small.size()) {
+        big.resize(maxStack_);
+        st = big.data();
+    }
+    int sp = -1;
+    auto uniform = [&]() -> double {
+        if (!ctx || !ctx->uniform) throw Error(location_, "ran()/nran() used where no random stream exists");
+        return ctx->uniform();
+    };
+    for (std::size_t pc = 0; pc < code_.size(); ++pc) {
+        const Instr& in = code_[pc];
+        switch (in.op) {
+            case Op::Const: st[++sp] = constants_[in.arg]; break;
+            case Op::Var: st[++sp] = slots[in.arg]; break;
+            case Op::Neg: st[sp] = -st[sp]; break;
+            case Op::Not: st[sp] = st[sp] == 0 ? 1 : 0; break;
+            case Op::Add: st[sp - 1] += st[sp]; --sp; break;
+            case Op::Sub: st[sp - 1] -= st[sp]; --sp; break;
+            case Op::Mul: st[sp - 1] *= st[sp]; --sp; break;
+            case Op::Div:
+                if (st[sp] == 0) throw Error(location_, "division by zero in '" + text_ + "'");
+                st[sp - 1] /= st[sp];
+                --sp;
+                break;
+            case Op::Mod:
+                if (st[sp] == 0) throw Error(location_, "modulo by zero in '" + text_ + "'");
+                st[sp - 1] = std::fmod(st[sp - 1], st[sp]);
+                --sp;
+                break;
+            case Op::Pow: st[sp - 1] = std::pow(st[sp - 1], st[sp]); --sp; break;
+            case Op::Lt: st[sp - 1] = st[sp - 1] < st[sp]; --sp; break;
+            case Op::Le: st[sp - 1] = st[sp - 1] <= st[sp]; --sp; break;
+            case Op::Gt: st[sp - 1] = st[sp - 1] > st[sp]; --sp; break;
+            case Op::Ge: st[sp - 1] = st[sp - 1] >= st[sp]; --sp; break;
+            case Op::Eq: st[sp - 1] = st[sp - 1] == st[sp]; --sp; break;
+            case Op::Ne:
+                if (in.arg == 0) {
+                    st[sp] = st[sp] != 0;
+                } else {
+                    st[sp - 1] = st[sp - 1] != st[sp];
+                    --sp;
+                }
+                break;
+            case Op::And: st[sp - 1] = (st[sp - 1] != 0) && (st[sp] != 0); --sp; break;
+            case Op::Or: st[sp - 1] = (st[sp - 1] != 0) || (st[sp] != 0); --sp; break;
+            case Op::Call1: st[sp] = apply1(in.fn, st[sp]); break;
+            case Op::Call2: st[sp - 1] = apply2(in.fn, st[sp - 1], st[sp]); --sp; break;
+            case Op::Ran: st[sp] = st[sp] * uniform(); break;
+            case Op::Nran: {
+                // Box–Muller: two uniforms give one normal deviate.
+                double u1 = uniform(), u2 = uniform();
+                if (u1 < 1e-300) u1 = 1e-300;
+                double z = std::sqrt(-2.0 * std::log(u1)) * std::cos(2 * 3.14159265358979323846 * u2);
+                st[sp - 1] = st[sp - 1] + st[sp] * z;
+                --sp;
+                break;
+            }
+            case Op::JumpIfFalse:
+                if (st[sp] == 0) { st[sp] = 0; pc = in.arg - 1; } else { --sp; }
+                break;
+            case Op::JumpIfTrue:
+                if (st[sp] != 0) { st[sp] = 1; pc = in.arg - 1; } else { --sp; }
+                break;
+            case Op::Jump: pc = in.arg - 1; break;
+            case Op::Pop: --sp; break;
+        }
+    }
+    return sp >= 0 ? st[sp] : 0.0;
+}
+
+std::ostream& operator<<(std::ostream& os, const Expression& e) {
+    e.print(os);
+    return os;
+}
+
+}  // namespace graftal

@@ -1,0 +1,107 @@
+#include "module_lexer.hpp"
+
+#include <cctype>
+
+namespace graftal {
+
+namespace {
+
+std::string describeByte(std::string_view text, std::size_t i) {
+    auto c = static_cast<unsigned char>(text[i]);
+    if (c >= 0x80) {
+        std::size_t n = (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xE ? 3 : 4;
+        return "'" + std::string(text.substr(i, n)) + "'";
+    }
+    return "'" + std::string(1, static_cast<char>(c)) + "'";
+}
+
+}  // namespace
+
+bool tokenizeModules(std::string_view text, const SourceLocation& loc, int startColumn,
+                     const SymbolTable& symbols, std::vector<ModuleToken>& out,
+                     DiagnosticList& diags) {
+    auto where = [&](std::size_t i) {
+        SourceLocation l = loc;
+        l.column = startColumn + static_cast<int>(i);
+        return l;
+    };
+    std::size_t i = 0;
+    while (i < text.size()) {
+        char c = text[i];
+        if (std::isspace(static_cast<unsigned char>(c))) {
+            ++i;
+            continue;
+        }
+        if (c == '(') {
+            if (out.empty() || out.back().hasParens) {
+                diags.error(where(i), "'(' must follow a module name, as in F(1)");
+                return false;
+            }
+            // Arguments belong to the module just read; split at top-level commas.
+            ModuleToken& m = out.back();
+            m.hasParens = true;
+            int depth = 0;
+            std::size_t argStart = i + 1;
+            std::size_t j = i + 1;
+            for (; j < text.size(); ++j) {
+                char d = text[j];
+                if (d == '(') {
+                    ++depth;
+                } else if (d == ')') {
+                    if (depth == 0) break;
+                    --depth;
+                } else if (d == ',' && depth == 0) {
+                    m.args.push_back({std::string(text.substr(argStart, j - argStart)),
+                                      startColumn + static_cast<int>(argStart)});
+                    argStart = j + 1;
+                }
+            }
+            if (j >= text.size()) {
+                diags.error(where(i), "unclosed '(': expected ')' to end the parameter list");
+                return false;
+            }
+            std::string last(text.substr(argStart, j - argStart));
+            bool blank = last.find_first_not_of(" \t") == std::string::npos;
+            if (!(blank && m.args.empty()))
+                m.args.push_back({std::move(last), startColumn + static_cast<int>(argStart)});
+            for (const auto& a : m.args) {
+                if (a.text.find_first_not_of(" \t") == std::string::npos) {
+                    diags.error(where(static_cast<std::size_t>(a.column - startColumn)),
+                                "empty parameter: expected an expression between the commas");
+                    return false;
+                }
+            }
+            i = j + 1;
+            continue;
+        }
+        if (c == ')') {
+            diags.error(where(i), "unmatched ')'");
+            return false;
+        }
+        if (static_cast<unsigned char>(c) >= 0x80) {
+            diags.error(where(i), "unexpected character " + describeByte(text, i) +
+                                      ": module names are ASCII (declare long names with "
+                                      "`module name;`)");
+            return false;
+        }
+        ModuleToken tok;
+        tok.column = startColumn + static_cast<int>(i);
+        std::size_t len = 1;
+        if (std::isalpha(static_cast<unsigned char>(c)) || c == '_' || c == '?') {
+            for (Symbol s : symbols.namesLongestFirst()) {
+                const std::string& n = symbols.name(s);
+                if (text.compare(i, n.size(), n) == 0) {
+                    tok.symbol = s;
+                    len = n.size();
+                    break;
+                }
+            }
+        }
+        if (len == 1) tok.symbol = static_cast<Symbol>(static_cast<unsigned char>(c));
+        out.push_back(std::move(tok));
+        i += len;
+    }
+    return true;
+}
+
+}  // namespace graftal

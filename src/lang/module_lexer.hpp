@@ -1,0 +1,32 @@
+// Splits module text (an axiom, a successor, a context) into modules and their
+// parenthesised argument texts. Declared multi-letter names are tried longest first.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "graftal/diagnostics.hpp"
+#include "graftal/module_string.hpp"
+
+namespace graftal {
+
+struct ArgumentText {
+    std::string text;
+    int column = 0;  // where the argument starts, 1-based
+};
+
+struct ModuleToken {
+    Symbol symbol = 0;
+    int column = 0;                   // 1-based column of the module name
+    bool hasParens = false;
+    std::vector<ArgumentText> args;   // one per comma-separated argument
+};
+
+// `startColumn` is the column of text[0] on line `loc.line`. Returns false and reports
+// to `diags` when the text is malformed.
+bool tokenizeModules(std::string_view text, const SourceLocation& loc, int startColumn,
+                     const SymbolTable& symbols, std::vector<ModuleToken>& out,
+                     DiagnosticList& diags);
+
+}  // namespace graftal

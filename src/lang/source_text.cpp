@@ -1,0 +1,105 @@
+#include "source_text.hpp"
+
+#include <cstdint>
+
+namespace graftal {
+
+namespace {
+
+// Length of the valid UTF-8 sequence at s[i], or 0 when it is not one.
+std::size_t utf8Length(std::string_view s, std::size_t i) {
+    auto c = static_cast<unsigned char>(s[i]);
+    std::size_t n = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xE ? 3 : (c >> 3) == 0x1E ? 4 : 0;
+    if (n == 0 || i + n > s.size()) return 0;
+    for (std::size_t k = 1; k < n; ++k)
+        if ((static_cast<unsigned char>(s[i + k]) & 0xC0) != 0x80) return 0;
+    return n;
+}
+
+bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
+
+}  // namespace
+
+bool prepareSource(std::string_view bytes, const std::string& fileName, SourceText& out,
+                   DiagnosticList& diags) {
+    out.fileName = fileName;
+    out.lines.clear();
+
+    // Text check first: a binary file gets one message, not hundreds of parse errors.
+    int line = 1, column = 1;
+    for (std::size_t i = 0; i < bytes.size();) {
+        char c = bytes[i];
+        auto uc = static_cast<unsigned char>(c);
+        std::size_t n = utf8Length(bytes, i);
+        if (n == 0 || (uc < 0x20 && c != '\n' && !isSpace(c)) || uc == 0x7F) {
+            diags.error({fileName, line, column},
+                        "this is not L-system text: found a binary byte 0x" +
+                            std::string(1, "0123456789abcdef"[uc >> 4]) +
+                            std::string(1, "0123456789abcdef"[uc & 15]) +
+                            " (expected a .l file in ASCII or UTF-8)");
+            return false;
+        }
+        if (c == '\n') {
+            ++line;
+            column = 1;
+        } else {
+            ++column;
+        }
+        i += n;
+    }
+
+    std::string current;
+    int number = 1;
+    bool inBlock = false;
+    int blockLine = 0, blockColumn = 0;
+    for (std::size_t i = 0; i < bytes.size(); ++i) {
+        char c = bytes[i];
+        if (c == '\n') {
+            if (!current.empty() && current.back() == '\r') current.back() = ' ';
+            out.lines.push_back({number++, std::move(current)});
+            current.clear();
+            continue;
+        }
+        if (inBlock) {
+            if (c == '*' && i + 1 < bytes.size() && bytes[i + 1] == '/') {
+                current += "  ";
+                ++i;
+                inBlock = false;
+            } else {
+                current += (c == '\t' ? '\t' : ' ');
+            }
+            continue;
+        }
+        if (c == '/' && i + 1 < bytes.size() && bytes[i + 1] == '*') {
+            inBlock = true;
+            blockLine = number;
+            blockColumn = static_cast<int>(current.size()) + 1;
+            current += "  ";
+            ++i;
+            continue;
+        }
+        if (c == '/' && i + 1 < bytes.size() && bytes[i + 1] == '/') {
+            bool lineStart = true;
+            for (char p : current)
+                if (!isSpace(p)) lineStart = false;
+            bool spaceBefore = current.empty() || isSpace(current.back());
+            bool spaceAfter = i + 2 >= bytes.size() || isSpace(bytes[i + 2]) ||
+                              bytes[i + 2] == '\n';
+            if (lineStart || (spaceBefore && spaceAfter)) {
+                while (i < bytes.size() && bytes[i] != '\n') ++i;
+                --i;  // let the loop see the newline
+                continue;
+            }
+        }
+        current += c;
+    }
+    if (inBlock) {
+        diags.error({fileName, blockLine, blockColumn},
+                    "unterminated comment: expected '*/' before the end of the file");
+        return false;
+    }
+    if (!current.empty()) out.lines.push_back({number, std::move(current)});
+    return true;
+}
+
+}  // namespace graftal

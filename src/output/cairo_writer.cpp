@@ -1,0 +1,200 @@
+// PNG and PDF output through Cairo. Both draw with drawScene so they look the same, and the
+// same as the SVG writer: background, then polygons, then segments on top (the scene keeps
+// polygons and segments apart, so turtle order between the two is not available).
+#include <cairo-pdf.h>
+#include <cairo.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "graftal/diagnostics.hpp"
+#include "graftal/output.hpp"
+
+namespace graftal {
+
+namespace {
+
+// Cairo's image surfaces are limited to 32767 pixels a side.
+constexpr int kMaxPixelSize = 32767;
+// Cairo stores coordinates in 24.8 fixed point; farther out they wrap around. Such points
+// are off the picture anyway, so they are skipped.
+constexpr double kMaxCoordinate = 4e6;
+// Segments per cairo_stroke. The stroker and rasteriser cost grows faster than linearly
+// with path length (every edge is sorted against every other), so one huge stroke for a
+// million-segment curve is slower than many medium ones. Breaking a run is invisible: with
+// round caps and round joins, two caps meeting at a point cover exactly what the join did.
+constexpr int kSegmentsPerStroke = 2000;
+
+using SurfacePtr = std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)>;
+using ContextPtr = std::unique_ptr<cairo_t, decltype(&cairo_destroy)>;
+
+Error cairoError(const std::filesystem::path& path, const std::string& what,
+                 cairo_status_t status) {
+    return Error(SourceLocation{path.string(), 0, 0}, what + ": " + cairo_status_to_string(status));
+}
+
+void checkSize(const RenderOptions& o, const std::filesystem::path& path, int limit) {
+    if (o.width <= 0 || o.height <= 0 || o.width > limit || o.height > limit)
+        throw Error(SourceLocation{path.string(), 0, 0},
+                    "image size " + std::to_string(o.width) + "x" + std::to_string(o.height) +
+                        " is out of range (1 to " + std::to_string(limit) + " per side)");
+}
+
+bool drawable(double x, double y) {
+    return std::abs(x) < kMaxCoordinate && std::abs(y) < kMaxCoordinate;  // false for NaN
+}
+
+void setSource(cairo_t* cr, const Rgb& c) {
+    cairo_set_source_rgb(cr, c.r, c.g, c.b);
+}
+
+void fillPolygons(cairo_t* cr, const Scene& scene, const RenderOptions& o,
+                  const ImageTransform& t) {
+    for (std::size_t k = 0; k < scene.polygonCount(); ++k) {
+        const auto vertices = scene.polygon(k);
+        if (vertices.size() < 3) continue;  // nothing to fill
+        bool ok = true;
+        for (const Vec3& v : vertices) ok = ok && drawable(t.x(v), t.y(v));
+        if (!ok) continue;
+        // One fill per polygon: merging same-coloured polygons into one path would let
+        // overlapping ones of opposite winding cancel out under the nonzero rule.
+        cairo_new_path(cr);
+        cairo_move_to(cr, t.x(vertices[0]), t.y(vertices[0]));
+        for (std::size_t i = 1; i < vertices.size(); ++i)
+            cairo_line_to(cr, t.x(vertices[i]), t.y(vertices[i]));
+        cairo_close_path(cr);
+        setSource(cr, o.fillColor ? *o.fillColor : scene.colorOf(scene.polygonColor[k]));
+        cairo_fill(cr);
+    }
+}
+
+// The order in which segments are stroked. Within a stretch of segments of one colour the
+// order cannot be seen (an opaque colour over itself gives the same pixels in any order),
+// so such a stretch is sorted by width, stably. A plant whose width changes at every
+// branch (DFS order alternates widths) then costs a few dozen strokes instead of one per
+// segment. Across colours, scene order is kept: there it decides which line is on top.
+std::vector<std::uint32_t> strokeOrder(const Scene& scene, const RenderOptions& o) {
+    const auto& segs = scene.segments;
+    std::vector<std::uint32_t> order(segs.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
+    auto colorOf = [&](std::uint32_t i) {
+        return o.lineColor ? *o.lineColor : scene.colorOf(segs[i].color);
+    };
+    std::size_t begin = 0;
+    while (begin < order.size()) {
+        const Rgb color = colorOf(order[begin]);
+        bool mixedWidths = false;
+        std::size_t end = begin + 1;
+        for (; end < order.size() && colorOf(order[end]) == color; ++end)
+            mixedWidths = mixedWidths || segs[order[end]].width != segs[order[begin]].width;
+        if (mixedWidths)
+            std::stable_sort(
+                order.begin() + static_cast<std::ptrdiff_t>(begin),
+                order.begin() + static_cast<std::ptrdiff_t>(end),
+                [&](std::uint32_t a, std::uint32_t b) { return segs[a].width < segs[b].width; });
+        begin = end;
+    }
+    return order;
+}
+
+// Segments are stroked in runs of equal colour and width, each run one path that only
+// moves (move_to) where a segment does not start at the previous one's end: a connected
+// curve then gets proper round joins and costs one stroke per kSegmentsPerStroke segments.
+void strokeSegments(cairo_t* cr, const Scene& scene, const RenderOptions& o,
+                    const ImageTransform& t) {
+    const double lineWidth = defaultLineWidth(scene, o);
+    cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+    cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+    cairo_new_path(cr);
+
+    int inPath = 0;  // segments in the current path; 0 means no path
+    Rgb runColor;
+    float runWidth = 0;
+    double lastX = 0, lastY = 0;
+    for (std::uint32_t index : strokeOrder(scene, o)) {
+        const Segment& seg = scene.segments[index];
+        if (!(seg.width > 0) || !std::isfinite(seg.width)) continue;  // invisible
+        const double ax = t.x(seg.a), ay = t.y(seg.a), bx = t.x(seg.b), by = t.y(seg.b);
+        if (!drawable(ax, ay) || !drawable(bx, by)) continue;
+        const Rgb color = o.lineColor ? *o.lineColor : scene.colorOf(seg.color);
+
+        if (inPath > 0 &&
+            (color != runColor || seg.width != runWidth || inPath >= kSegmentsPerStroke)) {
+            cairo_stroke(cr);
+            inPath = 0;
+        }
+        if (inPath == 0) {
+            runColor = color;
+            runWidth = seg.width;
+            setSource(cr, color);
+            cairo_set_line_width(cr, lineWidth * seg.width);
+        }
+        if (inPath == 0 || ax != lastX || ay != lastY) cairo_move_to(cr, ax, ay);
+        cairo_line_to(cr, bx, by);
+        lastX = bx;
+        lastY = by;
+        ++inPath;
+    }
+    if (inPath > 0) cairo_stroke(cr);
+}
+
+// Draws the whole picture in a width x height user space (pixels or points).
+void drawScene(cairo_t* cr, const Scene& scene, const RenderOptions& o) {
+    const ImageTransform t = ImageTransform::fit(scene.bounds(), o);
+    cairo_set_antialias(cr, o.antialias ? CAIRO_ANTIALIAS_DEFAULT : CAIRO_ANTIALIAS_NONE);
+    setSource(cr, o.background);
+    cairo_paint(cr);
+    cairo_set_fill_rule(cr, CAIRO_FILL_RULE_WINDING);
+    fillPolygons(cr, scene, o, t);
+    strokeSegments(cr, scene, o, t);
+}
+
+}  // namespace
+
+void writePng(const Scene& scene, const RenderOptions& o, const std::filesystem::path& path) {
+    checkSize(o, path, kMaxPixelSize);
+    SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, o.width, o.height),
+                       &cairo_surface_destroy);
+    if (auto st = cairo_surface_status(surface.get()); st != CAIRO_STATUS_SUCCESS)
+        throw cairoError(path,
+                         "cannot create a " + std::to_string(o.width) + "x" +
+                             std::to_string(o.height) + " image",
+                         st);
+    {
+        ContextPtr cr(cairo_create(surface.get()), &cairo_destroy);
+        drawScene(cr.get(), scene, o);
+        if (auto st = cairo_status(cr.get()); st != CAIRO_STATUS_SUCCESS)
+            throw cairoError(path, "cannot draw the picture", st);
+    }
+    cairo_surface_flush(surface.get());
+    if (auto st = cairo_surface_write_to_png(surface.get(), path.c_str());
+        st != CAIRO_STATUS_SUCCESS)
+        throw cairoError(path, "cannot write PNG", st);
+}
+
+void writePdf(const Scene& scene, const RenderOptions& o, const std::filesystem::path& path) {
+    // PDF viewers refuse pages over 200 inches (14400 points) a side.
+    checkSize(o, path, 14400);
+    SurfacePtr surface(cairo_pdf_surface_create(path.c_str(), o.width, o.height),
+                       &cairo_surface_destroy);
+    if (auto st = cairo_surface_status(surface.get()); st != CAIRO_STATUS_SUCCESS)
+        throw cairoError(path, "cannot create PDF", st);
+    cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATOR, "graftal");
+    {
+        ContextPtr cr(cairo_create(surface.get()), &cairo_destroy);
+        drawScene(cr.get(), scene, o);
+        cairo_show_page(cr.get());
+        if (auto st = cairo_status(cr.get()); st != CAIRO_STATUS_SUCCESS)
+            throw cairoError(path, "cannot draw the picture", st);
+    }
+    // The file is only complete (and write errors only known) once the surface finishes.
+    cairo_surface_finish(surface.get());
+    if (auto st = cairo_surface_status(surface.get()); st != CAIRO_STATUS_SUCCESS)
+        throw cairoError(path, "cannot write PDF", st);
+}
+
+}  // namespace graftal

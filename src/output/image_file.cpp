@@ -1,0 +1,106 @@
+// writeImage: picks the writer by extension and makes the write atomic. The picture goes to
+// a hidden temporary file in the target's own directory (rename is only atomic within one
+// file system) and is renamed over the target when complete, so a reader never sees half a
+// PNG and a failed render never destroys the previous picture.
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <string>
+#include <system_error>
+
+#include "graftal/diagnostics.hpp"
+#include "graftal/output.hpp"
+
+namespace graftal {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+Error fileError(const fs::path& path, const std::string& message) {
+    return Error(SourceLocation{path.string(), 0, 0}, message);
+}
+
+// ".<name>.tmp-<pid>-<n>": hidden, recognisably ours, and unique per process and call so
+// that two threads writing the same picture do not clobber each other's temporary.
+fs::path temporaryPathFor(const fs::path& path) {
+    static std::atomic<unsigned> counter{0};
+    // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) about "." + std::string.
+    std::string name = ".";
+    name += path.filename().string();
+    name += ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+    return path.parent_path() / name;
+}
+
+void writeSvgFile(const Scene& scene, const RenderOptions& o, const fs::path& path) {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    if (!out) throw fileError(path, std::string("cannot create file: ") + std::strerror(errno));
+    writeSvg(scene, o, out);
+    out.close();
+    if (!out) throw fileError(path, "cannot write SVG: write failed (disk full?)");
+}
+
+void writeByFormat(ImageFormat format, const Scene& scene, const RenderOptions& o,
+                   const fs::path& path) {
+    switch (format) {
+        case ImageFormat::Svg:
+            writeSvgFile(scene, o, path);
+            return;
+        case ImageFormat::Png:
+            writePng(scene, o, path);
+            return;
+        case ImageFormat::Pdf:
+            writePdf(scene, o, path);
+            return;
+    }
+}
+
+// The writers name the file they were given, which here is the temporary; the user knows
+// only the target.
+std::string messageOf(const Error& e) {
+    if (e.diagnostics().empty()) return e.what();
+    std::string s;
+    for (const Diagnostic& d : e.diagnostics()) {
+        if (!s.empty()) s += "; ";
+        s += d.message;
+    }
+    return s;
+}
+
+}  // namespace
+
+void writeImage(const Scene& scene, const RenderOptions& o, const fs::path& path) {
+    const std::optional<ImageFormat> format = imageFormatFor(path);
+    if (!format) {
+        const std::string ext = path.extension().string();
+        throw fileError(path, (ext.empty() ? std::string("no image file extension")
+                                           : "unknown image file extension '" + ext + "'") +
+                                  "; use .svg, .png or .pdf");
+    }
+    const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec))
+        throw fileError(path,
+                        "cannot write image: '" + dir.string() +
+                            (fs::exists(dir, ec) ? "' is not a directory" : "' does not exist"));
+
+    const fs::path temporary = temporaryPathFor(path);
+    try {
+        writeByFormat(*format, scene, o, temporary);
+        fs::rename(temporary, path, ec);
+        if (ec) throw fileError(path, "cannot write image: " + ec.message());
+    } catch (const Error& e) {
+        fs::remove(temporary, ec);
+        if (!e.diagnostics().empty() && e.diagnostics().front().location.file == path.string())
+            throw;
+        throw fileError(path, messageOf(e));
+    } catch (...) {
+        fs::remove(temporary, ec);
+        throw;
+    }
+}
+
+}  // namespace graftal

@@ -1,0 +1,180 @@
+// A derivation step in full: cut branches, rewrite with the step's table, decompose,
+// then let query modules and the environment see the new string.
+#include "graftal/derivation.hpp"
+
+#include "graftal/turtle.hpp"
+#include "parallel.hpp"
+#include "rewriting_engine.hpp"
+
+namespace graftal {
+
+namespace {
+
+bool containsSymbol(const ModuleString& s, Symbol a, Symbol b = 0xFFFF) {
+    for (Symbol x : s.symbols())
+        if (x == a || (b != 0xFFFF && x >= a && x <= b)) return true;
+    return false;
+}
+
+bool usesQueries(const LSystem& ls) {
+    auto isQuery = [](Symbol s) { return s >= kQueryE && s <= kQueryU; };
+    for (Symbol s : ls.axiom.symbols())
+        if (isQuery(s)) return true;
+    for (const auto* list : {&ls.productions, &ls.decomposition})
+        for (const auto& p : *list)
+            for (const auto& m : p.successor)
+                if (isQuery(m.symbol)) return true;
+    return false;
+}
+
+// Recursive rewriting (decomposition, homomorphism) done level by level: only modules
+// produced at the previous level are rewritten again, which for context-free productions
+// is the same as expanding each module recursively.
+void rewriteRecursively(RewritingEngine& engine, ModuleString& s, int depth, int stepNumber,
+                        std::size_t limit) {
+    ModuleString next;
+    std::vector<std::uint8_t> active, produced;
+    for (int level = 0; level < depth; ++level) {
+        bool any = engine.step(s, next, stepNumber, 0, limit, level == 0 ? nullptr : &active,
+                               &produced);
+        if (!any) break;
+        std::swap(s, next);
+        std::swap(active, produced);
+    }
+}
+
+}  // namespace
+
+Derivation::Derivation(const LSystem& lsystem, DerivationOptions options)
+    : lsystem_(lsystem),
+      options_(options),
+      current_(std::make_unique<ModuleString>(lsystem.axiom)),
+      next_(std::make_unique<ModuleString>()) {
+    std::uint64_t seed = options.seed.value_or(lsystem.seed);
+    unsigned threads = options.threads ? options.threads : defaultThreadCount();
+    rules_ = std::make_unique<RewritingEngine>(lsystem, lsystem.productions, seed, threads);
+    if (!lsystem.decomposition.empty())
+        decomposition_ = std::make_unique<RewritingEngine>(lsystem, lsystem.decomposition, seed, threads);
+    if (rules_->parametric() && !current_->hasParameters()) {
+        // Parametric strings always carry offsets, so every module reads the same way.
+        current_->rawParamStart().assign(current_->size() + 1, 0);
+    }
+    queries_ = usesQueries(lsystem);
+    environment_ = options.environment;
+    if (!environment_) {
+        ownedEnvironment_ = makeEnvironment(lsystem);
+        environment_ = ownedEnvironment_.get();
+    }
+    afterStep(0);
+}
+
+Derivation::~Derivation() = default;
+
+void Derivation::pruneCuts() {
+    // '%' removes itself and the rest of its branch: everything up to the ']' that closes
+    // the branch it stands in (or the end of the string on the main axis).
+    const ModuleString& s = *current_;
+    if (!containsSymbol(s, '%')) return;
+    ModuleString out;
+    out.reserve(s.size(), s.paramCount());
+    if (s.hasParameters()) out.rawParamStart().assign(1, 0);
+    for (std::size_t i = 0; i < s.size(); ++i) {
+        if (s.symbol(i) == '%') {
+            int depth = 0;
+            for (++i; i < s.size(); ++i) {
+                Symbol c = s.symbol(i);
+                if (c == '[') ++depth;
+                else if (c == ']' && depth-- == 0) break;
+            }
+            if (i >= s.size()) break;
+        }
+        out.push(s.symbol(i), s.params(i));
+    }
+    *current_ = std::move(out);
+}
+
+void Derivation::decompose(int stepNumber) {
+    if (!decomposition_) return;
+    rewriteRecursively(*decomposition_, *current_, lsystem_.decompositionDepth, stepNumber,
+                       options_.memoryLimit);
+}
+
+void Derivation::answerQueries(int stepNumber) {
+    if (!queries_) return;
+    ModuleString& s = *current_;
+    if (!containsSymbol(s, kQueryE, kQueryU)) return;
+    // The turtle sees the string after the homomorphism; query modules keep their order.
+    ModuleString seen = lsystem_.homomorphism.empty() ? ModuleString{}
+                                                      : applyHomomorphism(lsystem_, s, options_);
+    const ModuleString& walked = lsystem_.homomorphism.empty() ? s : seen;
+    std::vector<bool> wanted(lsystem_.symbols.size(), false);
+    for (Symbol q = kQueryE; q <= kQueryU; ++q) wanted[q] = true;
+    std::vector<TurtleFrame> frames;
+    traceTurtle(lsystem_, walked, wanted, [&](std::size_t, const TurtleFrame& f) { frames.push_back(f); });
+
+    std::vector<std::size_t> positions;
+    for (std::size_t i = 0; i < s.size(); ++i)
+        if (s.symbol(i) >= kQueryE && s.symbol(i) <= kQueryU) positions.push_back(i);
+    if (positions.size() != frames.size())
+        throw Error(SourceLocation{lsystem_.file, 0, 0},
+                    "the homomorphism changes the number of query modules (?E ?P ?H ?L ?U) "
+                    "in step " + std::to_string(stepNumber) + "; they must map to themselves");
+
+    auto& params = s.rawParams();
+    const auto& starts = s.paramStarts();
+    std::vector<CommunicationRequest> requests;
+    for (std::size_t k = 0; k < positions.size(); ++k) {
+        std::size_t i = positions[k];
+        const TurtleFrame& f = frames[k];
+        std::span<double> p;
+        if (!starts.empty()) p = {params.data() + starts[i], starts[i + 1] - starts[i]};
+        const Vec3* v = nullptr;
+        switch (s.symbol(i)) {
+            case kQueryP: v = &f.position; break;
+            case kQueryH: v = &f.heading; break;
+            case kQueryL: v = &f.left; break;
+            case kQueryU: v = &f.up; break;
+            default: requests.push_back({i, f, p}); continue;
+        }
+        double xyz[3] = {v->x, v->y, v->z};
+        for (std::size_t c = 0; c < p.size() && c < 3; ++c) p[c] = xyz[c];
+    }
+    if (!requests.empty() && environment_) environment_->respond(stepNumber, requests);
+}
+
+void Derivation::afterStep(int stepNumber) {
+    decompose(stepNumber);
+    answerQueries(stepNumber);
+}
+
+void Derivation::step() {
+    int stepNumber = steps_ + 1;
+    if (lsystem_.usesCut()) pruneCuts();
+    rules_->step(*current_, *next_, stepNumber, lsystem_.tableForStep(stepNumber),
+                 options_.memoryLimit);
+    std::swap(current_, next_);
+    ++steps_;
+    afterStep(stepNumber);
+}
+
+void Derivation::run(int steps) {
+    for (int i = 0; i < steps; ++i) step();
+}
+
+ModuleString derive(const LSystem& lsystem, int steps, DerivationOptions options) {
+    Derivation d(lsystem, options);
+    d.run(steps < 0 ? lsystem.derivationLength : steps);
+    return d.take();
+}
+
+ModuleString applyHomomorphism(const LSystem& lsystem, const ModuleString& modules,
+                               DerivationOptions options) {
+    ModuleString s = modules;
+    if (lsystem.homomorphism.empty()) return s;
+    RewritingEngine engine(lsystem, lsystem.homomorphism, options.seed.value_or(lsystem.seed),
+                           options.threads ? options.threads : defaultThreadCount());
+    rewriteRecursively(engine, s, lsystem.homomorphismDepth, 0, options.memoryLimit);
+    return s;
+}
+
+}  // namespace graftal

@@ -1,0 +1,153 @@
+#include "graftal/module_string.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <sstream>
+#include <new>
+
+#include <sys/mman.h>
+
+namespace graftal {
+
+namespace {
+constexpr std::size_t kLargeBlock = std::size_t(4) << 20;
+constexpr std::size_t kHugePage = std::size_t(2) << 20;
+std::size_t roundToHugePages(std::size_t b) { return (b + kHugePage - 1) / kHugePage * kHugePage; }
+}  // namespace
+
+void* allocateLarge(std::size_t bytes) {
+    if (bytes < kLargeBlock) {
+        void* p = ::operator new(bytes == 0 ? 1 : bytes);
+        return p;
+    }
+    std::size_t size = roundToHugePages(bytes);
+    void* p = ::mmap(nullptr, size, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (p == MAP_FAILED) throw std::bad_alloc();
+#ifdef MADV_HUGEPAGE
+    ::madvise(p, size, MADV_HUGEPAGE);
+#endif
+    return p;
+}
+
+void deallocateLarge(void* p, std::size_t bytes) noexcept {
+    if (!p) return;
+    if (bytes < kLargeBlock) {
+        ::operator delete(p);
+        return;
+    }
+    ::munmap(p, roundToHugePages(bytes));
+}
+
+SymbolTable::SymbolTable() {
+    names_.resize(kFirstNamedSymbol);
+    for (int c = 0; c < static_cast<int>(kFirstNamedSymbol); ++c) {
+        names_[c] = std::string(1, static_cast<char>(c));
+    }
+    // Query and communication modules of open L-systems exist in every L-system.
+    for (const char* q : {"?E", "?P", "?H", "?L", "?U"}) declare(q);
+}
+
+Symbol SymbolTable::declare(std::string_view name) {
+    if (name.size() == 1 && static_cast<unsigned char>(name[0]) < kFirstNamedSymbol)
+        return static_cast<Symbol>(name[0]);
+    auto it = ids_.find(std::string(name));
+    if (it != ids_.end()) return it->second;
+    auto id = static_cast<Symbol>(names_.size());
+    names_.emplace_back(name);
+    ids_.emplace(std::string(name), id);
+    byLength_.push_back(id);
+    std::stable_sort(byLength_.begin(), byLength_.end(), [this](Symbol a, Symbol b) {
+        return names_[a].size() > names_[b].size();
+    });
+    return id;
+}
+
+int SymbolTable::find(std::string_view name) const {
+    if (name.size() == 1 && static_cast<unsigned char>(name[0]) < kFirstNamedSymbol)
+        return static_cast<unsigned char>(name[0]);
+    auto it = ids_.find(std::string(name));
+    return it == ids_.end() ? -1 : it->second;
+}
+
+void ModuleString::clear() {
+    symbols_.clear();
+    paramStart_.clear();
+    params_.clear();
+}
+
+void ModuleString::reserve(std::size_t modules, std::size_t params) {
+    symbols_.reserve(modules);
+    if (params) {
+        paramStart_.reserve(modules + 1);
+        params_.reserve(params);
+    }
+}
+
+void ModuleString::push(Symbol s) {
+    symbols_.push_back(s);
+    if (!paramStart_.empty()) paramStart_.push_back(static_cast<std::uint32_t>(params_.size()));
+}
+
+void ModuleString::push(Symbol s, std::span<const double> args) {
+    if (args.empty()) {
+        push(s);
+        return;
+    }
+    if (paramStart_.empty()) paramStart_.assign(symbols_.size() + 1, 0);
+    symbols_.push_back(s);
+    params_.insert(params_.end(), args.begin(), args.end());
+    paramStart_.push_back(static_cast<std::uint32_t>(params_.size()));
+}
+
+void ModuleString::append(const ModuleString& other) {
+    for (std::size_t i = 0; i < other.size(); ++i) push(other.symbol(i), other.params(i));
+}
+
+std::size_t ModuleString::memoryBytes() const {
+    return symbols_.capacity() * sizeof(Symbol) + paramStart_.capacity() * sizeof(std::uint32_t) +
+           params_.capacity() * sizeof(double);
+}
+
+std::string formatNumber(double v) {
+    if (v == 0) return "0";  // also folds -0
+    if (std::isnan(v)) return "nan";
+    if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+    char buf[64];
+    if (std::fabs(v) < 1e15 && v == std::trunc(v)) {
+        auto r = std::to_chars(buf, buf + sizeof buf, static_cast<long long>(v));
+        return std::string(buf, r.ptr);
+    }
+    auto r = std::to_chars(buf, buf + sizeof buf, v);
+    return std::string(buf, r.ptr);
+}
+
+void ModuleString::print(std::ostream& os, const SymbolTable& table) const {
+    std::string chunk;
+    chunk.reserve(1 << 16);
+    for (std::size_t i = 0; i < symbols_.size(); ++i) {
+        chunk += table.name(symbols_[i]);
+        auto args = params(i);
+        if (!args.empty()) {
+            chunk += '(';
+            for (std::size_t k = 0; k < args.size(); ++k) {
+                if (k) chunk += ',';
+                chunk += formatNumber(args[k]);
+            }
+            chunk += ')';
+        }
+        if (chunk.size() > (1 << 16) - 256) {
+            os.write(chunk.data(), static_cast<std::streamsize>(chunk.size()));
+            chunk.clear();
+        }
+    }
+    os.write(chunk.data(), static_cast<std::streamsize>(chunk.size()));
+}
+
+std::string ModuleString::toString(const SymbolTable& table) const {
+    std::ostringstream os;
+    print(os, table);
+    return std::move(os).str();
+}
+
+}  // namespace graftal

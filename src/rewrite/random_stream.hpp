@@ -1,0 +1,26 @@
+// Counter-based random numbers: each draw is a pure function of (seed, step, module
+// position, draw number). No generator state is carried from module to module, so the
+// result is the same for any number of threads and for streamed derivations.
+#pragma once
+
+#include <cstdint>
+
+namespace graftal {
+
+inline std::uint64_t mix64(std::uint64_t z) {
+    // splitmix64's finaliser: a bijection with good avalanche.
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+}
+
+inline double uniformAt(std::uint64_t seed, std::uint64_t step, std::uint64_t position,
+                        std::uint64_t draw) {
+    std::uint64_t h = mix64(seed + 0x9e3779b97f4a7c15ULL);
+    h = mix64(h ^ (step * 0xd1b54a32d192ed03ULL));
+    h = mix64(h ^ position);
+    h = mix64(h ^ (draw * 0x8cb92ba72f3d8dd7ULL));
+    return static_cast<double>(h >> 11) * 0x1.0p-53;
+}
+
+}  // namespace graftal

@@ -1,0 +1,123 @@
+// The command-line contract: what other tools and users rely on.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "process.hpp"
+
+using graftal::testing::runGraftal;
+using graftal::testing::TempDir;
+
+namespace {
+
+const char* kKoch = "Lsystem: 1\nangle factor: 4\nderivation length: 2\naxiom: F+F+F+F\n"
+                    "F --> F+F-F-FF+F+F-F\nendlsystem\n";
+
+}  // namespace
+
+TEST(Cli, DerivePrintsTheString) {
+    TempDir t;
+    auto f = t.write("fib.l", "Lsystem: 1\nderivation length: 5\naxiom: b\na --> ab\nb --> a\nendlsystem\n");
+    auto r = runGraftal("derive " + f.string());
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.out, "abaababa\n");
+    r = runGraftal("derive " + f.string() + " -n 2");
+    EXPECT_EQ(r.out, "ab\n");
+}
+
+TEST(Cli, DefinesFromTheCommandLine) {
+    TempDir t;
+    auto f = t.write("d.l", "#define N 1\nLsystem: 1\nderivation length: N\naxiom: A\nA --> AB\nendlsystem\n");
+    auto r = runGraftal("derive " + f.string() + " -D N=3");
+    EXPECT_EQ(r.out, "ABBB\n") << r.err;
+}
+
+TEST(Cli, StatsIsOneJsonObject) {
+    TempDir t;
+    auto f = t.write("koch.l", kKoch);
+    auto r = runGraftal("stats " + f.string());
+    ASSERT_EQ(r.status, 0) << r.err;
+    auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["steps"], 2);
+    EXPECT_EQ(j["modules"], 475);
+    EXPECT_EQ(j["symbols"]["F"], 256);
+    EXPECT_EQ(j["segments"], 256);
+    EXPECT_EQ(j["polygons"], 0);
+    ASSERT_EQ(j["bbox"]["min"].size(), 3u);
+    double w = j["bbox"]["max"][0].get<double>() - j["bbox"]["min"][0].get<double>();
+    double h = j["bbox"]["max"][1].get<double>() - j["bbox"]["min"][1].get<double>();
+    EXPECT_NEAR(w, h, 1e-9);
+    EXPECT_NEAR(w, 26, 1e-9) << "side 16 plus bumps of 4 + 1 on each side";
+}
+
+TEST(Cli, RenderWritesEachFormat) {
+    TempDir t;
+    auto f = t.write("koch.l", kKoch);
+    for (const char* ext : {"svg", "png", "pdf"}) {
+        auto out = t.path() / (std::string("k.") + ext);
+        auto r = runGraftal("render " + f.string() + " -o " + out.string() + " --size 300x200");
+        EXPECT_EQ(r.status, 0) << r.err;
+        EXPECT_GT(std::filesystem::file_size(out), 100u) << ext;
+    }
+}
+
+struct BadInput {
+    const char* name;
+    const char* content;  // nullptr: the file does not exist
+    const char* args;     // extra arguments
+    const char* expected; // substring of stderr
+    const char* outName = "out.png";
+};
+
+class CliBadInput : public ::testing::TestWithParam<BadInput> {};
+
+TEST_P(CliBadInput, OneClearMessageNonZeroStatusAndNoOutputFile) {
+    const BadInput& b = GetParam();
+    TempDir t;
+    auto f = b.content ? t.write("bad.l", b.content) : t.path() / "missing.l";
+    auto out = t.path() / b.outName;
+    auto r = runGraftal("render " + f.string() + " -o " + out.string() + " " + b.args);
+    EXPECT_NE(r.status, 0);
+    EXPECT_LT(r.status, 128) << "no crash";
+    EXPECT_NE(r.err.find(b.expected), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out)) << "no output file left behind";
+    for (auto& e : std::filesystem::directory_iterator(t.path()))
+        EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, CliBadInput,
+    ::testing::Values(
+        BadInput{"UnknownKeyword", "Lsystem: 1\naxoim: F\n", "", "bad.l:2:1: error: unknown keyword 'axoim:'"},
+        BadInput{"MalformedProduction", "Lsystem: 1\naxiom: F\nF => FF\n", "",
+                 "bad.l:3:1: error: expected a production"},
+        BadInput{"UnbalancedBracket", "Lsystem: 1\naxiom: F\nF --> F[+F\n", "",
+                 "bad.l:3:8: error: unbalanced '['"},
+        BadInput{"MissingFile", nullptr, "", "missing.l: error: cannot open the file"},
+        BadInput{"NegativeSteps", kKoch, "-n -3", "-n"},
+        BadInput{"PopOnEmptyStack", "Lsystem: 1\naxiom: A\nA --> F]F\nendlsystem\n", "-n 1",
+                 "bad.l:3:8: error: unbalanced ']' in the successor: no '[' is open here"},
+        BadInput{"BinaryGarbage", "\x7f" "ELF\x02\x01\x01\x00\x00\x00", "",
+                 "bad.l:1:1: error: this is not L-system text"},
+        BadInput{"MemoryLimit", "Lsystem: 1\naxiom: F\nF --> FFFFFFFFFF\nendlsystem\n",
+                 "-n 12 --memory-limit 64M",
+                 "bad.l: error: derivation step 8 would make a string of 100000000 modules"},
+        BadInput{"UnknownFormat", kKoch, "", "unknown picture format", "x.bmp"}),
+    [](const auto& param) { return std::string(param.param.name); });
+
+TEST(Cli, NegativeStepCountIsRefused) {
+    TempDir t;
+    auto f = t.write("koch.l", kKoch);
+    auto r = runGraftal("derive " + f.string() + " -n -3");
+    EXPECT_NE(r.status, 0);
+    EXPECT_FALSE(r.err.empty());
+}
+
+TEST(Cli, WarningsGoToStderrWithTheLine) {
+    TempDir t;
+    auto f = t.write("w.l", "Lsystem: 1\naxiom: ba\na --> c\nb < a --> b\nendlsystem\n");
+    auto r = runGraftal("derive " + f.string() + " -n 1");
+    EXPECT_EQ(r.status, 0);
+    EXPECT_EQ(r.out, "bc\n");
+    EXPECT_NE(r.err.find("w.l:4:1: warning:"), std::string::npos) << r.err;
+}

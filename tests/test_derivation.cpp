@@ -1,0 +1,123 @@
+#include <gtest/gtest.h>
+
+#include "test_helpers.hpp"
+
+using namespace graftal;
+using graftal::testing::derived;
+using graftal::testing::parse;
+
+TEST(Derivation, AnabaenaMatchesTheBook) {
+    LSystem ls = parse(
+        "module ar, al, br, bl;\nLsystem: 1\naxiom: ar\n"
+        "ar --> al br\nal --> bl ar\nbr --> ar\nbl --> al\nendlsystem\n");
+    EXPECT_EQ(derived(ls, 0), "ar");
+    EXPECT_EQ(derived(ls, 1), "albr");
+    EXPECT_EQ(derived(ls, 2), "blarar");
+    EXPECT_EQ(derived(ls, 3), "alalbralbr");
+    EXPECT_EQ(derived(ls, 4), "blarblararblarar");
+}
+
+TEST(Derivation, FibonacciWordLengths) {
+    LSystem ls = parse("Lsystem: 1\naxiom: b\na --> ab\nb --> a\nendlsystem\n");
+    EXPECT_EQ(derived(ls, 5), "abaababa");
+    const std::size_t fib[] = {1, 1, 2, 3, 5, 8, 13, 21, 34, 55, 89, 144};
+    for (int n = 0; n < 12; ++n) EXPECT_EQ(derive(ls, n).size(), fib[n]) << "n=" << n;
+}
+
+TEST(Derivation, KochIslandModuleCounts) {
+    LSystem ls = parse("Lsystem: 1\naxiom: F+F+F+F\nF --> F+F-F-FF+F+F-F\nendlsystem\n");
+    // modules(n) = 7 + 13 * 4 * (8^n - 1) / 7
+    std::size_t expected[] = {7, 59, 475, 3803, 30427, 243419};
+    for (int n = 0; n < 6; ++n) EXPECT_EQ(derive(ls, n).size(), expected[n]);
+}
+
+TEST(Derivation, EmptySuccessorDeletes) {
+    EXPECT_EQ(derived("Lsystem: 1\naxiom: ABAB\nA --> *\nendlsystem\n", 1), "BB");
+}
+
+TEST(Derivation, FirstApplicableProductionInFileOrderWins) {
+    EXPECT_EQ(derived("Lsystem: 1\naxiom: A\nA --> B\nA --> C\nendlsystem\n", 1), "B");
+}
+
+TEST(Derivation, HormoneDiffusionMatchesTheBook) {
+    LSystem ls = parse("Lsystem: 1\naxiom: baaaaaaaa\nb < a --> b\nendlsystem\n");
+    EXPECT_EQ(derived(ls, 1), "bbaaaaaaa");
+    EXPECT_EQ(derived(ls, 2), "bbbaaaaaa");
+    EXPECT_EQ(derived(ls, 3), "bbbbaaaaa");
+    EXPECT_EQ(derived(ls, 4), "bbbbbaaaa");
+}
+
+TEST(Derivation, PfgMultiModulePredecessorReplacesTheWholeSubword) {
+    LSystem ls = parse("axiom: ABCDEFG\nAB < CDE > FG --> A[B]A\n");
+    EXPECT_EQ(derived(ls, 1), "ABA[B]AFG");
+}
+
+TEST(Derivation, ParametersBindFromPredecessorAndBothContexts) {
+    LSystem ls = parse(
+        "Lsystem: 1\naxiom: A(1)B(2)C(3)\n"
+        "A(x) < B(y) > C(z) : y < 4 --> B(x+z)[A(y)]\nendlsystem\n");
+    EXPECT_EQ(derived(ls, 1), "A(1)B(4)[A(2)]C(3)");
+    EXPECT_EQ(derived(ls, 2), "A(1)B(4)[A(2)]C(3)") << "y=4 fails the condition";
+}
+
+TEST(Derivation, LectureNotesParametricSequence) {
+    LSystem ls = parse(
+        "Lsystem: 1\naxiom: A(0)\n"
+        "A(i) : i < 3 --> F[-L]FA(i+1)\n"
+        "A(i) : i == 3 --> FB\nendlsystem\n");
+    EXPECT_EQ(derived(ls, 1), "F[-L]FA(1)");
+    EXPECT_EQ(derived(ls, 4), "F[-L]FF[-L]FF[-L]FFB");
+}
+
+TEST(Derivation, RunTimeDivisionByZeroNamesModuleAndStep) {
+    LSystem ls = parse("Lsystem: 1\naxiom: A(2)\nA(x) --> A(x-1)B(1/(x-1))\nendlsystem\n");
+    try {
+        derive(ls, 3);
+        FAIL() << "expected an error";
+    } catch (const Error& e) {
+        std::string m = e.diagnostics().front().toString();
+        EXPECT_NE(m.find("test.l:3:"), std::string::npos) << m;
+        EXPECT_NE(m.find("division by zero"), std::string::npos) << m;
+        EXPECT_NE(m.find("'A(1)' in derivation step 2"), std::string::npos) << m;
+    }
+}
+
+TEST(Derivation, MemoryLimitRefusesBeforeAllocating) {
+    LSystem ls = parse("Lsystem: 1\naxiom: F\nF --> FFFFFFFFFF\nendlsystem\n");
+    DerivationOptions o;
+    o.memoryLimit = 1 << 20;
+    Derivation d(ls, o);
+    d.run(5);  // 100000 modules: fits
+    EXPECT_EQ(d.current().size(), 100000u);
+    try {
+        d.step();
+        FAIL() << "expected the limit to refuse step 6";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("1000000 modules"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("memory limit"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(d.current().size(), 100000u) << "a refused step leaves the string as it was";
+}
+
+TEST(Derivation, SameResultForAnyThreadCount) {
+    const char* systems[] = {
+        "Lsystem: 1\naxiom: F+F+F+F\nF --> F+F-F-FF+F+F-F\nendlsystem\n",
+        // Hogeweg and Hesper's Fig 3.11a: context-sensitive, bracketed
+        "Lsystem: 1\nignore: +-F\naxiom: F1F1F1\n0 < 0 > 0 --> 0\n0 < 0 > 1 --> 1[+F1F1]\n"
+        "0 < 1 > 0 --> 1\n0 < 1 > 1 --> 1\n1 < 0 > 0 --> 0\n1 < 0 > 1 --> 1F1\n"
+        "1 < 1 > 0 --> 0\n1 < 1 > 1 --> 0\n* < + > * --> -\n* < - > * --> +\nendlsystem\n",
+        "Lsystem: 1\naxiom: A(1)\nA(x) --> A(x+1)F(x)[+A(x/2)]F(x)\nendlsystem\n",
+        "Lsystem: 1\nseed: 7\naxiom: F\nF --> F[+F]F[-F]F : 1\nF --> F[+F]F : 1\n"
+        "F --> F[-F]F : 1\nendlsystem\n",
+    };
+    int steps[] = {5, 42, 14, 8};
+    for (int k = 0; k < 4; ++k) {
+        LSystem ls = parse(systems[k]);
+        DerivationOptions one, many;
+        one.threads = 1;
+        many.threads = 7;
+        ModuleString a = derive(ls, steps[k], one), b = derive(ls, steps[k], many);
+        EXPECT_GT(a.size(), 70000u) << "system " << k << " must be large enough to be split";
+        EXPECT_TRUE(a == b) << "system " << k;
+    }
+}

@@ -1,0 +1,35 @@
+// Small helpers shared by the tests: parse text, derive, print.
+#pragma once
+
+#include <string>
+
+#include "graftal/graftal.hpp"
+
+namespace graftal::testing {
+
+inline LSystem parse(const std::string& text, const std::string& name = "test.l") {
+    ParseOptions o;
+    o.fileName = name;
+    return parseLSystem(text, o);
+}
+
+inline std::string derived(const LSystem& ls, int steps) {
+    return derive(ls, steps).toString(ls.symbols);
+}
+
+inline std::string derived(const std::string& text, int steps) {
+    LSystem ls = parse(text);
+    return derived(ls, steps);
+}
+
+// The first error message a parse produces, or "" when it parses.
+inline std::string parseError(const std::string& text) {
+    try {
+        parse(text);
+    } catch (const Error& e) {
+        return e.diagnostics().front().toString();
+    }
+    return "";
+}
+
+}  // namespace graftal::testing
