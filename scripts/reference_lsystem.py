@@ -437,9 +437,11 @@ def derive_strings(name, n=None):
 def check_book():
     """Compare with the strings printed in the seed (book) text. Returns failures."""
     failures = []
+    checks = []
 
     def expect(what, got, want):
         ok = got == want
+        checks.append(what)
         print("%-4s %s" % ("ok" if ok else "FAIL", what))
         if not ok:
             print("     want %r\n     got  %r" % (want, got))
@@ -502,6 +504,7 @@ def check_book():
     d2 = [seg[k + 2] - 2 * seg[k + 1] + seg[k] for k in range(len(seg) - 2)]
     expect("Fig 6.6 mango leaves: constant second difference (quadratic growth)",
            len(set(d2)), 1)
+    print("%d passed, %d failed" % (len(checks) - len(failures), len(failures)))
     return failures
 
 
@@ -631,7 +634,6 @@ def main():
         print(json.dumps(d))
     elif a.cmd == "check":
         failures = check_book()
-        print("%d passed, %d failed" % (0, len(failures)) if failures else "all passed")
         sys.exit(1 if failures else 0)
     elif a.cmd == "compare":
         bad = compare(a.exe, [os.path.basename(f) for f in a.files] or None, a.every_step)

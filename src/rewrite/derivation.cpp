@@ -2,6 +2,8 @@
 // then let query modules and the environment see the new string.
 #include "graftal/derivation.hpp"
 
+#include <cmath>
+
 #include "graftal/turtle.hpp"
 #include "parallel.hpp"
 #include "rewriting_engine.hpp"
@@ -136,7 +138,10 @@ void Derivation::answerQueries(int stepNumber) {
             case kQueryU: v = &f.up; break;
             default: requests.push_back({i, f, p}); continue;
         }
-        double xyz[3] = {v->x, v->y, v->z};
+        // Rotations leave 1e-17-sized noise where a component is 0; snap it so that
+        // derived strings print the 0 a user expects.
+        auto snap = [](double x) { return std::fabs(x) < 1e-12 ? 0.0 : x; };
+        double xyz[3] = {snap(v->x), snap(v->y), snap(v->z)};
         for (std::size_t c = 0; c < p.size() && c < 3; ++c) p[c] = xyz[c];
     }
     if (!requests.empty() && environment_) environment_->respond(stepNumber, requests);
