@@ -133,7 +133,7 @@ TEST(ParserErrors, UnbalancedBrackets) {
 
 TEST(ParserErrors, MissingAxiom) {
     EXPECT_EQ(parseError("Lsystem: 1\nF --> FF\nendlsystem\n"),
-              "test.l:3: error: no axiom: expected a line such as 'axiom: F'");
+              "test.l:3:1: error: no axiom: expected a line such as 'axiom: F'");
 }
 
 TEST(ParserErrors, BadValues) {

@@ -76,9 +76,9 @@ void parseImageSize(const std::string& text, int& width, int& height) {
         ok = r1.ec == std::errc() && r1.ptr == text.data() + x && r2.ec == std::errc() &&
              r2.ptr == text.data() + text.size();
     }
-    if (!ok || w < 1 || h < 1 || w > 32768 || h > 32768)
+    if (!ok || w < 1 || h < 1 || w > 32767 || h > 32767)
         throw usageError("--size '" + text + "': expected WIDTHxHEIGHT in pixels, e.g. 800x600 "
-                         "(each from 1 to 32768)");
+                         "(each from 1 to 32767)");
     width = w;
     height = h;
 }
@@ -140,7 +140,11 @@ int runRender(const InputOptions& in, const RenderCommandOptions& out) {
         throw usageError("-o " + out.output + ": unknown picture format (use .svg, .png or .pdf)");
     Derived d = loadAndDerive(in);
     Scene scene = interpret(d.lsystem, applyHomomorphism(d.lsystem, d.modules));
-    writeImage(scene, out.render, out.output);
+    RenderOptions render = out.render;
+    // pfg's scale factor: the picture fills that percentage of the frame (100 = all of it).
+    double fill = std::clamp(d.lsystem.view.scaleFactor / 100.0, 0.01, 1.0);
+    render.margin = 0.5 - (0.5 - render.margin) * fill;
+    writeImage(scene, render, out.output);
     return 0;
 }
 

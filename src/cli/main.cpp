@@ -22,7 +22,8 @@ void addInputOptions(CLI::App& cmd, graftal::cli::InputOptions& in, std::string&
         ->type_name("NAME=VALUE")
         ->allow_extra_args(false)
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-    cmd.add_option("--seed", in.seed, "random seed for stochastic L-systems");
+    cmd.add_option("--seed", in.seed, "random seed for stochastic L-systems")
+        ->check(CLI::NonNegativeNumber);
     cmd.add_option("--memory-limit", memoryLimit, "largest string memory, e.g. 2G (default 2G)");
     cmd.add_option("--threads", in.threads, "worker threads (default: all cores)");
 }
@@ -52,7 +53,8 @@ int main(int argc, char** argv) {
     addInputOptions(*render, in, memoryLimit);
     render->add_option("-o,--output", out.output, "output picture (.svg, .png, .pdf)")->required();
     render->add_option("--size", size, "picture size WxH in pixels (default 800x800)");
-    render->add_option("--line-width", out.render.lineWidth, "line width in pixels");
+    render->add_option("--line-width", out.render.lineWidth, "line width in pixels (0: automatic)")
+        ->check(CLI::Range(0.0, 1000.0));
     render->add_option("--background", background, "background colour, #rrggbb");
     render->add_option("--color", color, "line colour, #rrggbb (default: the palette)");
     render->add_option("--margin", out.render.margin, "margin, fraction of the picture")
@@ -61,7 +63,9 @@ int main(int argc, char** argv) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        return app.exit(e);
+        // --help and --version are "errors" that exit 0; every real usage error exits 2.
+        int status = app.exit(e);
+        return status == 0 ? 0 : 2;
     }
 
     try {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace graftal {
 
@@ -27,6 +28,17 @@ Rgb hex(unsigned rgb) {
 
 std::ostream& operator<<(std::ostream& os, const Vec3& v) {
     return os << '(' << unsigned0(v.x) << ", " << unsigned0(v.y) << ", " << unsigned0(v.z) << ')';
+}
+
+std::ostream& operator<<(std::ostream& os, const Rgb& c) {
+    auto byte = [](float v) { return static_cast<int>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255)); };
+    const char* digits = "0123456789abcdef";
+    std::string s = "#";
+    for (int b : {byte(c.r), byte(c.g), byte(c.b)}) {
+        s += digits[b >> 4];
+        s += digits[b & 15];
+    }
+    return os << s;
 }
 
 void Bounds::extend(const Vec3& p) {

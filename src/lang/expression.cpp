@@ -426,6 +426,12 @@ double Expression::evaluate(std::span<const double> slots, const EvalContext* ct
         st = big.data();
     }
     int sp = -1;
+    // sqrt(-1), log(0), asin(2), (-8)^0.5: a value the L-system cannot go on with.
+    auto checkDomain = [&](double v, const char* what) {
+        if (!std::isfinite(v))
+            throw Error(location_, std::string("'") + text_ + "' is undefined here: " + what +
+                                       " was given an argument outside its domain");
+    };
     auto uniform = [&]() -> double {
         if (!ctx || !ctx->uniform) throw Error(location_, "ran()/nran() used where no random stream exists");
         return ctx->uniform();
@@ -450,7 +456,11 @@ double Expression::evaluate(std::span<const double> slots, const EvalContext* ct
                 st[sp - 1] = std::fmod(st[sp - 1], st[sp]);
                 --sp;
                 break;
-            case Op::Pow: st[sp - 1] = std::pow(st[sp - 1], st[sp]); --sp; break;
+            case Op::Pow:
+                st[sp - 1] = std::pow(st[sp - 1], st[sp]);
+                --sp;
+                checkDomain(st[sp], "^");
+                break;
             case Op::Lt: st[sp - 1] = st[sp - 1] < st[sp]; --sp; break;
             case Op::Le: st[sp - 1] = st[sp - 1] <= st[sp]; --sp; break;
             case Op::Gt: st[sp - 1] = st[sp - 1] > st[sp]; --sp; break;
@@ -466,8 +476,15 @@ double Expression::evaluate(std::span<const double> slots, const EvalContext* ct
                 break;
             case Op::And: st[sp - 1] = (st[sp - 1] != 0) && (st[sp] != 0); --sp; break;
             case Op::Or: st[sp - 1] = (st[sp - 1] != 0) || (st[sp] != 0); --sp; break;
-            case Op::Call1: st[sp] = apply1(in.fn, st[sp]); break;
-            case Op::Call2: st[sp - 1] = apply2(in.fn, st[sp - 1], st[sp]); --sp; break;
+            case Op::Call1:
+                st[sp] = apply1(in.fn, st[sp]);
+                checkDomain(st[sp], "a function");
+                break;
+            case Op::Call2:
+                st[sp - 1] = apply2(in.fn, st[sp - 1], st[sp]);
+                --sp;
+                checkDomain(st[sp], "a function");
+                break;
             case Op::Ran: st[sp] = st[sp] * uniform(); break;
             case Op::Nran: {
                 // Box–Muller: two uniforms give one normal deviate.

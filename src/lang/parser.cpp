@@ -1,17 +1,16 @@
-// The .l language: cpfg's L-system files, and pfg's data files read verbatim.
+// The .l language: cpfg's L-system files, and pfg's data files read verbatim. This file
+// reads lines, declarations and keyword directives (see parser.hpp).
+#include "parser.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <fstream>
 #include <sstream>
 
-#include "graftal/lsystem.hpp"
-#include "module_lexer.hpp"
-#include "source_text.hpp"
-
 namespace graftal {
+namespace parsing {
 
-namespace {
 
 std::string lower(std::string_view s) {
     std::string r(s);
@@ -40,10 +39,6 @@ const std::vector<std::string> kKeywords = {
     "step length",     "maximum depth",     "table",       "table schedule",  "environment",
 };
 
-struct Arrow {
-    std::size_t pos = std::string_view::npos;
-    std::size_t len = 0;
-};
 
 // `-->` wins; then the book's `→`; then `->` (not the `<-` `>` of a context like `<->`).
 Arrow findArrow(std::string_view s) {
@@ -55,7 +50,7 @@ Arrow findArrow(std::string_view s) {
 }
 
 // Finds `c` outside parentheses, from `from`.
-std::size_t findTopLevel(std::string_view s, char c, std::size_t from = 0) {
+std::size_t findTopLevel(std::string_view s, char c, std::size_t from) {
     int depth = 0;
     for (std::size_t i = from; i < s.size(); ++i) {
         if (s[i] == '(') ++depth;
@@ -76,735 +71,480 @@ std::size_t findLastTopLevel(std::string_view s, char c) {
     return found;
 }
 
-class Parser {
-public:
-    Parser(const SourceText& src, const ParseOptions& options, DiagnosticList& diags)
-        : src_(src), options_(options), diags_(diags) {}
-
-    LSystem run() {
-        ls_.name = src_.fileName;
-        ls_.file = src_.fileName;
-        collectDeclarations();
-        for (const auto& [k, v] : options_.defines) ls_.defines[k] = v;
-        ls_.legacyPfg = !sawLsystemHeader_;
-        ls_.view.clockwisePlus = ls_.legacyPfg;
-        for (const auto& line : src_.lines) parseLine(line);
-        finish();
-        return std::move(ls_);
-    }
-
-private:
-    SourceLocation at(const SourceLine& line, std::size_t offset) const {
-        return src_.at(line.number, static_cast<int>(offset) + 1);
-    }
-
-    // Pass 1: #define and module declarations take effect wherever they stand, and the
-    // presence of an `Lsystem:` header decides between cpfg and legacy pfg files.
-    void collectDeclarations() {
-        for (const auto& line : src_.lines) {
-            std::string_view t = line.text;
-            std::size_t start = firstNonBlank(t);
-            if (start == std::string_view::npos) continue;
-            std::string_view rest = t.substr(start);
-            if (rest.rfind("#define", 0) == 0) {
-                parseDefine(line, start);
-            } else if (isModuleDeclaration(rest)) {
-                parseModuleDeclaration(line, start);
-            } else if (findArrow(rest).pos == std::string_view::npos) {
-                std::size_t colon = rest.find(':');
-                if (colon != std::string_view::npos &&
-                    normaliseKeyword(rest.substr(0, colon)) == "lsystem")
-                    sawLsystemHeader_ = true;
-            }
+LSystem Parser::run() {
+    ls_.name = src_.fileName;
+    ls_.file = src_.fileName;
+    collectDeclarations();
+    for (const auto& [k, v] : options_.defines) ls_.defines[k] = v;
+    ls_.legacyPfg = !sawLsystemHeader_;
+    ls_.view.clockwisePlus = ls_.legacyPfg;
+    for (const auto& line : src_.lines) {
+        parseLine(line);
+        if (errorCount() >= kMaxErrors) {
+            // A file that is not an L-system at all should not print a page per line.
+            diags_.error(src_.at(line.number, 1), "too many errors; giving up on this file");
+            return std::move(ls_);
         }
     }
+    finish();
+    return std::move(ls_);
+}
 
-    static bool isModuleDeclaration(std::string_view rest) {
-        for (std::string_view kw : {"modules", "module"}) {
-            if (rest.size() > kw.size() && lower(rest.substr(0, kw.size())) == kw &&
-                std::isspace(static_cast<unsigned char>(rest[kw.size()])) &&
-                findArrow(rest).pos == std::string_view::npos && rest.find(':') == std::string_view::npos)
-                return true;
-        }
-        return false;
-    }
+SourceLocation Parser::at(const SourceLine& line, std::size_t offset) const {
+    return src_.at(line.number, static_cast<int>(offset) + 1);
+}
 
-    static std::string normaliseKeyword(std::string_view s) {
-        std::string out;
-        bool space = false;
-        for (char c : trimView(s)) {
-            if (std::isspace(static_cast<unsigned char>(c))) {
-                space = true;
-                continue;
-            }
-            if (space && !out.empty()) out += ' ';
-            space = false;
-            out += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-        }
-        return out;
-    }
-
-    void parseDefine(const SourceLine& line, std::size_t start) {
-        std::string_view t = line.text;
-        std::size_t p = start + 7;
-        if (p < t.size() && !std::isspace(static_cast<unsigned char>(t[p]))) {
-            diags_.error(at(line, start), "expected '#define NAME value'");
-            return;
-        }
-        while (p < t.size() && std::isspace(static_cast<unsigned char>(t[p]))) ++p;
-        std::size_t nameStart = p;
-        while (p < t.size() && (std::isalnum(static_cast<unsigned char>(t[p])) || t[p] == '_')) ++p;
-        if (p == nameStart || std::isdigit(static_cast<unsigned char>(t[nameStart]))) {
-            diags_.error(at(line, nameStart), "expected a name after #define");
-            return;
-        }
-        std::string name(t.substr(nameStart, p - nameStart));
-        std::string value(trimView(t.substr(p)));
-        if (value.empty()) value = "1";
-        if (!options_.defines.count(name)) ls_.defines[name] = value;
-        defineLines_[name] = line.number;
-    }
-
-    void parseModuleDeclaration(const SourceLine& line, std::size_t start) {
-        std::string_view t = line.text;
-        std::size_t p = start;
-        while (p < t.size() && std::isalpha(static_cast<unsigned char>(t[p]))) ++p;  // keyword
-        std::size_t end = t.find(';', p);
-        if (end == std::string_view::npos) end = t.size();
-        else if (!isBlank(t.substr(end + 1)))
-            diags_.error(at(line, end + 1), "unexpected text after ';' in a module declaration");
-        std::size_t i = p;
-        int count = 0;
-        while (i < end) {
-            char c = t[i];
-            if (std::isspace(static_cast<unsigned char>(c)) || c == ',') {
-                ++i;
-                continue;
-            }
-            std::size_t s = i;
-            if (!(std::isalpha(static_cast<unsigned char>(c)) || c == '_')) {
-                diags_.error(at(line, i), "expected a module name (letters, digits, '_') in "
-                                          "the declaration, found '" + std::string(1, c) + "'");
-                return;
-            }
-            while (i < end && (std::isalnum(static_cast<unsigned char>(t[i])) || t[i] == '_')) ++i;
-            std::string_view name = t.substr(s, i - s);
-            if (ls_.symbols.size() >= kMaxSymbols) {
-                diags_.error(at(line, s), "too many module names (at most 65408)");
-                return;
-            }
-            ls_.symbols.declare(name);
-            ++count;
-            // cpfg allows an arity after the name, e.g. `module A(2)`; accept and skip it.
-            while (i < end && std::isspace(static_cast<unsigned char>(t[i]))) ++i;
-            if (i < end && t[i] == '(') {
-                std::size_t close = t.find(')', i);
-                if (close == std::string_view::npos || close > end) {
-                    diags_.error(at(line, i), "expected ')' after the parameter count");
-                    return;
-                }
-                i = close + 1;
-            }
-        }
-        if (count == 0) diags_.error(at(line, p), "expected module names after 'module'");
-    }
-
-    void parseLine(const SourceLine& line) {
+// Pass 1: #define and module declarations take effect wherever they stand, and the
+// presence of an `Lsystem:` header decides between cpfg and legacy pfg files.
+void Parser::collectDeclarations() {
+    for (const auto& line : src_.lines) {
         std::string_view t = line.text;
         std::size_t start = firstNonBlank(t);
-        if (start == std::string_view::npos) return;
+        if (start == std::string_view::npos) continue;
         std::string_view rest = t.substr(start);
-        if (rest[0] == '#') {
-            if (rest.rfind("#define", 0) == 0) return;  // pass 1 took it
-            std::size_t e = 1;
-            while (e < rest.size() && std::isalpha(static_cast<unsigned char>(rest[e]))) ++e;
-            diags_.error(at(line, start), "unknown directive '" + std::string(rest.substr(0, e)) +
-                                              "': expected '#define NAME value'");
-            return;
-        }
-        if (isModuleDeclaration(rest)) return;
-        Arrow arrow = findArrow(t);
-        if (arrow.pos != std::string_view::npos) {
-            if (ended_) {
-                diags_.error(at(line, start), "production after 'endlsystem'");
-                return;
-            }
-            parseProduction(line, arrow);
-            return;
-        }
-        std::string word = normaliseKeyword(rest);
-        if (word == "endlsystem") {
-            ended_ = true;
-            return;
-        }
-        if (word == "decomposition" || word == "homomorphism") {
-            section_ = word == "decomposition" ? Section::Decomposition : Section::Homomorphism;
-            currentTable_ = -1;
-            return;
-        }
-        std::size_t colon = t.find(':', start);
-        if (colon != std::string_view::npos) {
-            std::string kw = normaliseKeyword(t.substr(start, colon - start));
-            bool known = std::find(kKeywords.begin(), kKeywords.end(), kw) != kKeywords.end();
-            bool looksLikeKeyword = !kw.empty() && std::all_of(kw.begin(), kw.end(), [](char c) {
-                return std::isalpha(static_cast<unsigned char>(c)) || c == ' ';
-            });
-            if (known) {
-                parseDirective(line, kw, colon + 1);
-                return;
-            }
-            if (looksLikeKeyword) {
-                std::string list;
-                for (const auto& k : kKeywords) list += (list.empty() ? "" : ", ") + k + ":";
-                diags_.error(at(line, start), "unknown keyword '" +
-                                                  std::string(trimView(t.substr(start, colon - start))) +
-                                                  ":'; expected one of " + list);
-                return;
-            }
-        }
-        diags_.error(at(line, start),
-                     "expected a production such as 'F --> F+F' (the arrow '-->' is missing) "
-                     "or a keyword line such as 'axiom: F'");
-    }
-
-    // ---- directives ------------------------------------------------------------------
-
-    bool constantValue(const SourceLine& line, std::size_t from, double& value) {
-        std::string_view text = line.text;
-        std::string_view v = text.substr(from);
-        std::size_t off = firstNonBlank(v);
-        if (off == std::string_view::npos) {
-            diags_.error(at(line, text.size()), "expected a value after ':'");
-            return false;
-        }
-        ExpressionScope scope;
-        scope.defines = &ls_.defines;
-        DiagnosticList local;
-        Expression e = compileExpression(trimView(v), at(line, from + off), scope, local);
-        for (const auto& d : local.items()) diags_.add(d);
-        if (e.empty()) return false;
-        if (e.usesRandom()) {
-            diags_.error(at(line, from + off), "a setting cannot use ran() or nran()");
-            return false;
-        }
-        try {
-            value = e.evaluate({});
-        } catch (const Error& err) {
-            for (const auto& d : err.diagnostics()) diags_.add(d);
-            return false;
-        }
-        if (!std::isfinite(value)) {
-            diags_.error(at(line, from + off), "the value is not a finite number");
-            return false;
-        }
-        return true;
-    }
-
-    void parseDirective(const SourceLine& line, const std::string& kw, std::size_t valueStart) {
-        std::string_view value = std::string_view(line.text).substr(valueStart);
-        SourceLocation loc = at(line, valueStart + (firstNonBlank(value) == std::string_view::npos
-                                                        ? 0
-                                                        : firstNonBlank(value)));
-        double v = 0;
-        if (kw == "lsystem") {
-            ls_.name = std::string(trimView(value));
-        } else if (kw == "derivation length") {
-            if (!constantValue(line, valueStart, v)) return;
-            if (v < 0 || v != std::floor(v) || v > 1e6) {
-                diags_.error(loc, "derivation length must be a whole number from 0 to 1000000, "
-                                  "not " + formatNumber(v));
-                return;
-            }
-            ls_.derivationLength = static_cast<int>(v);
-        } else if (kw == "axiom") {
-            if (sawAxiom_) {
-                diags_.error(loc, "a second axiom (the first is on line " +
-                                      std::to_string(axiomLine_) + ")");
-                return;
-            }
-            sawAxiom_ = true;
-            axiomLine_ = line.number;
-            parseAxiom(line, valueStart);
-        } else if (kw == "ignore" || kw == "consider") {
-            parseIgnore(line, kw, valueStart);
-        } else if (kw == "angle factor") {
-            if (!constantValue(line, valueStart, v)) return;
-            if (v <= 0) {
-                diags_.error(loc, "angle factor must be positive (delta = 360 / factor)");
-                return;
-            }
-            ls_.view.angleDegrees = 360.0 / v;
-        } else if (kw == "angle increment") {
-            if (!constantValue(line, valueStart, v)) return;
-            ls_.view.angleDegrees = v;
-        } else if (kw == "scale factor") {
-            if (!constantValue(line, valueStart, v)) return;
-            if (v <= 0) {
-                diags_.error(loc, "scale factor must be positive");
-                return;
-            }
-            ls_.view.scaleFactor = v;
-        } else if (kw == "initial heading") {
-            if (!constantValue(line, valueStart, v)) return;
-            ls_.view.initialHeading = v;
-        } else if (kw == "step length") {
-            if (!constantValue(line, valueStart, v)) return;
-            if (v <= 0) {
-                diags_.error(loc, "step length must be positive");
-                return;
-            }
-            ls_.view.stepLength = v;
-        } else if (kw == "maximum depth") {
-            if (!constantValue(line, valueStart, v)) return;
-            if (section_ == Section::Main) {
-                diags_.error(at(line, firstNonBlank(line.text)),
-                             "'maximum depth:' belongs in a decomposition or homomorphism section");
-                return;
-            }
-            if (v < 1 || v != std::floor(v) || v > 10000) {
-                diags_.error(loc, "maximum depth must be a whole number from 1 to 10000");
-                return;
-            }
-            (section_ == Section::Decomposition ? ls_.decompositionDepth : ls_.homomorphismDepth) =
-                static_cast<int>(v);
-        } else if (kw == "table") {
-            std::string name(trimView(value));
-            if (section_ != Section::Main) {
-                diags_.error(loc, "tables hold the main productions, not decomposition or homomorphism");
-                return;
-            }
-            if (name.empty()) {
-                diags_.error(loc, "expected a table name after 'table:'");
-                return;
-            }
-            auto it = std::find(ls_.tableNames.begin(), ls_.tableNames.end(), name);
-            if (it != ls_.tableNames.end()) {
-                diags_.error(loc, "table '" + name + "' is defined twice");
-                return;
-            }
-            ls_.tableNames.push_back(name);
-            currentTable_ = static_cast<int>(ls_.tableNames.size()) - 1;
-        } else if (kw == "environment") {
-            if (trimView(value).empty()) {
-                diags_.error(loc, "expected an environment name after 'environment:'");
-                return;
-            }
-            ls_.environment.push_back({std::string(value), at(line, valueStart)});
-        } else if (kw == "table schedule") {
-            parseSchedule(line, valueStart);
-        } else if (kw == "seed") {
-            if (!constantValue(line, valueStart, v)) return;
-            if (v < 0 || v != std::floor(v)) {
-                diags_.error(loc, "seed must be a whole number >= 0");
-                return;
-            }
-            ls_.seed = static_cast<std::uint64_t>(v);
+        if (rest.rfind("#define", 0) == 0) {
+            parseDefine(line, start);
+        } else if (isModuleDeclaration(rest)) {
+            parseModuleDeclaration(line, start);
+        } else if (findArrow(rest).pos == std::string_view::npos) {
+            std::size_t colon = rest.find(':');
+            if (colon != std::string_view::npos &&
+                normaliseKeyword(rest.substr(0, colon)) == "lsystem")
+                sawLsystemHeader_ = true;
         }
     }
+}
 
-    // table schedule: NAME COUNT, NAME COUNT, ..., NAME [COUNT] [, repeat]
-    void parseSchedule(const SourceLine& line, std::size_t valueStart) {
-        if (!rawSchedule_.empty() || scheduleLine_) {
-            diags_.error(at(line, firstNonBlank(line.text)), "a second 'table schedule:'");
+bool Parser::isModuleDeclaration(std::string_view rest) {
+    for (std::string_view kw : {"modules", "module"}) {
+        if (rest.size() > kw.size() && lower(rest.substr(0, kw.size())) == kw &&
+            std::isspace(static_cast<unsigned char>(rest[kw.size()])) &&
+            findArrow(rest).pos == std::string_view::npos && rest.find(':') == std::string_view::npos)
+            return true;
+    }
+    return false;
+}
+
+std::string Parser::normaliseKeyword(std::string_view s) {
+    std::string out;
+    bool space = false;
+    for (char c : trimView(s)) {
+        if (std::isspace(static_cast<unsigned char>(c))) {
+            space = true;
+            continue;
+        }
+        if (space && !out.empty()) out += ' ';
+        space = false;
+        out += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    }
+    return out;
+}
+
+void Parser::parseDefine(const SourceLine& line, std::size_t start) {
+    std::string_view t = line.text;
+    std::size_t p = start + 7;
+    if (p < t.size() && !std::isspace(static_cast<unsigned char>(t[p]))) {
+        diags_.error(at(line, start), "expected '#define NAME value'");
+        return;
+    }
+    while (p < t.size() && std::isspace(static_cast<unsigned char>(t[p]))) ++p;
+    std::size_t nameStart = p;
+    while (p < t.size() && (std::isalnum(static_cast<unsigned char>(t[p])) || t[p] == '_')) ++p;
+    if (p == nameStart || std::isdigit(static_cast<unsigned char>(t[nameStart]))) {
+        diags_.error(at(line, nameStart), "expected a name after #define");
+        return;
+    }
+    std::string name(t.substr(nameStart, p - nameStart));
+    std::string value(trimView(t.substr(p)));
+    if (value.empty()) value = "1";
+    if (!options_.defines.count(name)) ls_.defines[name] = value;
+    defineLines_[name] = line.number;
+}
+
+void Parser::parseModuleDeclaration(const SourceLine& line, std::size_t start) {
+    std::string_view t = line.text;
+    std::size_t p = start;
+    while (p < t.size() && std::isalpha(static_cast<unsigned char>(t[p]))) ++p;  // keyword
+    std::size_t end = t.find(';', p);
+    if (end == std::string_view::npos) end = t.size();
+    else if (!isBlank(t.substr(end + 1)))
+        diags_.error(at(line, end + 1), "unexpected text after ';' in a module declaration");
+    std::size_t i = p;
+    int count = 0;
+    while (i < end) {
+        char c = t[i];
+        if (std::isspace(static_cast<unsigned char>(c)) || c == ',') {
+            ++i;
+            continue;
+        }
+        std::size_t s = i;
+        if (!(std::isalpha(static_cast<unsigned char>(c)) || c == '_')) {
+            diags_.error(at(line, i), "expected a module name (letters, digits, '_') in "
+                                      "the declaration, found '" + std::string(1, c) + "'");
             return;
         }
-        scheduleLine_ = line.number;
-        std::string_view value = std::string_view(line.text).substr(valueStart);
-        std::size_t pos = 0;
-        while (pos <= value.size()) {
-            std::size_t comma = findTopLevel(value, ',', pos);
-            if (comma == std::string_view::npos) comma = value.size();
-            std::string_view item = value.substr(pos, comma - pos);
-            std::size_t lead = firstNonBlank(item);
-            std::size_t col = valueStart + pos + (lead == std::string_view::npos ? 0 : lead);
-            std::string_view t = trimView(item);
-            if (t.empty()) {
-                diags_.error(at(line, col), "expected 'TABLE STEPS' in the schedule");
+        while (i < end && (std::isalnum(static_cast<unsigned char>(t[i])) || t[i] == '_')) ++i;
+        std::string_view name = t.substr(s, i - s);
+        if (ls_.symbols.size() >= kMaxSymbols) {
+            diags_.error(at(line, s), "too many module names (at most 65408)");
+            return;
+        }
+        ls_.symbols.declare(name);
+        ++count;
+        // cpfg allows an arity after the name, e.g. `module A(2)`; accept and skip it.
+        while (i < end && std::isspace(static_cast<unsigned char>(t[i]))) ++i;
+        if (i < end && t[i] == '(') {
+            std::size_t close = t.find(')', i);
+            if (close == std::string_view::npos || close > end) {
+                diags_.error(at(line, i), "expected ')' after the parameter count");
                 return;
             }
-            if (lower(t) == "repeat") {
-                if (comma != value.size()) {
-                    diags_.error(at(line, col), "'repeat' must end the schedule");
-                    return;
-                }
-                ls_.scheduleRepeats = true;
-                break;
-            }
-            std::size_t sp = t.find_first_of(" \t");
-            RawScheduleEntry e;
-            e.name = std::string(t.substr(0, sp));
-            e.location = at(line, col);
-            if (sp != std::string_view::npos) {
-                double steps = 0;
-                std::size_t countCol = col + sp + firstNonBlank(t.substr(sp));
-                ExpressionScope scope;
-                scope.defines = &ls_.defines;
-                DiagnosticList local;
-                Expression ex = compileExpression(trimView(t.substr(sp)), at(line, countCol), scope, local);
-                for (const auto& d : local.items()) diags_.add(d);
-                if (ex.empty()) return;
-                steps = ex.evaluate({});
-                if (steps < 0 || steps != std::floor(steps)) {
-                    diags_.error(at(line, countCol), "a table runs for a whole number of steps >= 0");
-                    return;
-                }
-                e.steps = static_cast<int>(steps);
-            }
-            rawSchedule_.push_back(std::move(e));
-            pos = comma + 1;
-            if (comma == value.size()) break;
+            i = close + 1;
         }
     }
+    if (count == 0) diags_.error(at(line, p), "expected module names after 'module'");
+}
 
-    void parseAxiom(const SourceLine& line, std::size_t valueStart) {
-        std::string_view value = std::string_view(line.text).substr(valueStart);
-        SourceLocation loc = at(line, valueStart);
-        if (trimView(value) == "*") return;  // the empty axiom
-        std::vector<ModuleToken> toks;
-        if (!tokenizeModules(value, loc, static_cast<int>(valueStart) + 1, ls_.symbols, toks, diags_))
-            return;
-        if (toks.empty()) {
-            diags_.error(at(line, valueStart), "expected the axiom's modules after 'axiom:'");
-            return;
-        }
-        ExpressionScope scope;
-        scope.defines = &ls_.defines;
-        std::vector<double> args;
-        for (const auto& tok : toks) {
-            args.clear();
-            for (const auto& a : tok.args) {
-                SourceLocation aloc = src_.at(line.number, a.column);
-                DiagnosticList local;
-                Expression e = compileExpression(a.text, aloc, scope, local);
-                for (const auto& d : local.items()) diags_.add(d);
-                if (e.empty()) return;
-                try {
-                    args.push_back(e.evaluate({}));
-                } catch (const Error& err) {
-                    for (const auto& d : err.diagnostics()) diags_.add(d);
-                    return;
-                }
-            }
-            ls_.axiom.push(tok.symbol, args);
-        }
-        checkBrackets(toks, line, "axiom");
+void Parser::parseLine(const SourceLine& line) {
+    std::string_view t = line.text;
+    std::size_t start = firstNonBlank(t);
+    if (start == std::string_view::npos) return;
+    std::string_view rest = t.substr(start);
+    if (rest[0] == '#') {
+        if (rest.rfind("#define", 0) == 0) return;  // pass 1 took it
+        std::size_t e = 1;
+        while (e < rest.size() && std::isalpha(static_cast<unsigned char>(rest[e]))) ++e;
+        diags_.error(at(line, start), "unknown directive '" + std::string(rest.substr(0, e)) +
+                                          "': expected '#define NAME value'");
+        return;
     }
-
-    // An axiom or successor with unbalanced brackets is almost always a typo; say where.
-    void checkBrackets(const std::vector<ModuleToken>& toks, const SourceLine& line,
-                       const char* what) {
-        std::vector<int> open;
-        for (const auto& t : toks) {
-            if (t.symbol == '[') open.push_back(t.column);
-            if (t.symbol == ']') {
-                if (open.empty()) {
-                    diags_.error(src_.at(line.number, t.column),
-                                 std::string("unbalanced ']' in the ") + what +
-                                     ": no '[' is open here");
-                    return;
-                }
-                open.pop_back();
-            }
+    if (isModuleDeclaration(rest)) return;
+    Arrow arrow = findArrow(t);
+    if (arrow.pos != std::string_view::npos) {
+        if (ended_) {
+            diags_.error(at(line, start), "production after 'endlsystem'");
+            return;
         }
-        if (!open.empty())
-            diags_.error(src_.at(line.number, open.back()),
-                         std::string("unbalanced '[' in the ") + what + ": expected a matching ']'");
+        parseProduction(line, arrow);
+        return;
     }
-
-    void parseIgnore(const SourceLine& line, const std::string& kw, std::size_t valueStart) {
-        std::string_view value = std::string_view(line.text).substr(valueStart);
-        SourceLocation loc = at(line, valueStart);
-        if ((kw == "ignore" && sawConsider_) || (kw == "consider" && sawIgnore_)) {
-            diags_.error(loc, "use either 'ignore:' or 'consider:', not both");
+    std::string word = normaliseKeyword(rest);
+    if (word == "endlsystem") {
+        ended_ = true;
+        return;
+    }
+    if (word == "decomposition" || word == "homomorphism") {
+        section_ = word == "decomposition" ? Section::Decomposition : Section::Homomorphism;
+        currentTable_ = -1;
+        return;
+    }
+    std::size_t colon = t.find(':', start);
+    if (colon != std::string_view::npos) {
+        std::string kw = normaliseKeyword(t.substr(start, colon - start));
+        bool known = std::find(kKeywords.begin(), kKeywords.end(), kw) != kKeywords.end();
+        bool looksLikeKeyword = !kw.empty() && std::all_of(kw.begin(), kw.end(), [](char c) {
+            return std::isalpha(static_cast<unsigned char>(c)) || c == ' ';
+        });
+        if (known) {
+            parseDirective(line, kw, colon + 1);
             return;
         }
-        std::vector<ModuleToken> toks;
-        if (!tokenizeModules(value, loc, static_cast<int>(valueStart) + 1, ls_.symbols, toks, diags_))
+        if (looksLikeKeyword) {
+            std::string list;
+            for (const auto& k : kKeywords) list += (list.empty() ? "" : ", ") + k + ":";
+            diags_.error(at(line, start), "unknown keyword '" +
+                                              std::string(trimView(t.substr(start, colon - start))) +
+                                              ":'; expected one of " + list);
             return;
-        for (const auto& t : toks) {
-            if (t.hasParens) {
-                diags_.error(src_.at(line.number, t.column),
-                             "'" + kw + ":' lists module names without parameters");
+        }
+    }
+    diags_.error(at(line, start),
+                 "expected a production such as 'F --> F+F' (the arrow '-->' is missing) "
+                 "or a keyword line such as 'axiom: F'");
+}
+
+bool Parser::constantValue(const SourceLine& line, std::size_t from, double& value) {
+    std::string_view text = line.text;
+    std::string_view v = text.substr(from);
+    std::size_t off = firstNonBlank(v);
+    if (off == std::string_view::npos) {
+        diags_.error(at(line, text.size()), "expected a value after ':'");
+        return false;
+    }
+    ExpressionScope scope;
+    scope.defines = &ls_.defines;
+    DiagnosticList local;
+    Expression e = compileExpression(trimView(v), at(line, from + off), scope, local);
+    for (const auto& d : local.items()) diags_.add(d);
+    if (e.empty()) return false;
+    if (e.usesRandom()) {
+        diags_.error(at(line, from + off), "a setting cannot use ran() or nran()");
+        return false;
+    }
+    try {
+        value = e.evaluate({});
+    } catch (const Error& err) {
+        for (const auto& d : err.diagnostics()) diags_.add(d);
+        return false;
+    }
+    if (!std::isfinite(value)) {
+        diags_.error(at(line, from + off), "the value is not a finite number");
+        return false;
+    }
+    return true;
+}
+
+void Parser::parseDirective(const SourceLine& line, const std::string& kw, std::size_t valueStart) {
+    std::string_view value = std::string_view(line.text).substr(valueStart);
+    SourceLocation loc = at(line, valueStart + (firstNonBlank(value) == std::string_view::npos
+                                                    ? 0
+                                                    : firstNonBlank(value)));
+    double v = 0;
+    if (kw == "lsystem") {
+        ls_.name = std::string(trimView(value));
+    } else if (kw == "derivation length") {
+        if (!constantValue(line, valueStart, v)) return;
+        if (v < 0 || v != std::floor(v) || v > 1e6) {
+            diags_.error(loc, "derivation length must be a whole number from 0 to 1000000, "
+                              "not " + formatNumber(v));
+            return;
+        }
+        ls_.derivationLength = static_cast<int>(v);
+    } else if (kw == "axiom") {
+        if (sawAxiom_) {
+            diags_.error(loc, "a second axiom (the first is on line " +
+                                  std::to_string(axiomLine_) + ")");
+            return;
+        }
+        sawAxiom_ = true;
+        axiomLine_ = line.number;
+        parseAxiom(line, valueStart);
+    } else if (kw == "ignore" || kw == "consider") {
+        parseIgnore(line, kw, valueStart);
+    } else if (kw == "angle factor") {
+        if (!constantValue(line, valueStart, v)) return;
+        if (v <= 0) {
+            diags_.error(loc, "angle factor must be positive (delta = 360 / factor)");
+            return;
+        }
+        ls_.view.angleDegrees = 360.0 / v;
+    } else if (kw == "angle increment") {
+        if (!constantValue(line, valueStart, v)) return;
+        ls_.view.angleDegrees = v;
+    } else if (kw == "scale factor") {
+        if (!constantValue(line, valueStart, v)) return;
+        if (v <= 0) {
+            diags_.error(loc, "scale factor must be positive");
+            return;
+        }
+        ls_.view.scaleFactor = v;
+    } else if (kw == "initial heading") {
+        if (!constantValue(line, valueStart, v)) return;
+        ls_.view.initialHeading = v;
+    } else if (kw == "step length") {
+        if (!constantValue(line, valueStart, v)) return;
+        if (v <= 0) {
+            diags_.error(loc, "step length must be positive");
+            return;
+        }
+        ls_.view.stepLength = v;
+    } else if (kw == "maximum depth") {
+        if (!constantValue(line, valueStart, v)) return;
+        if (section_ == Section::Main) {
+            diags_.error(at(line, firstNonBlank(line.text)),
+                         "'maximum depth:' belongs in a decomposition or homomorphism section");
+            return;
+        }
+        if (v < 1 || v != std::floor(v) || v > 10000) {
+            diags_.error(loc, "maximum depth must be a whole number from 1 to 10000");
+            return;
+        }
+        (section_ == Section::Decomposition ? ls_.decompositionDepth : ls_.homomorphismDepth) =
+            static_cast<int>(v);
+    } else if (kw == "table") {
+        std::string name(trimView(value));
+        if (section_ != Section::Main) {
+            diags_.error(loc, "tables hold the main productions, not decomposition or homomorphism");
+            return;
+        }
+        if (name.empty()) {
+            diags_.error(loc, "expected a table name after 'table:'");
+            return;
+        }
+        auto it = std::find(ls_.tableNames.begin(), ls_.tableNames.end(), name);
+        if (it != ls_.tableNames.end()) {
+            diags_.error(loc, "table '" + name + "' is defined twice");
+            return;
+        }
+        ls_.tableNames.push_back(name);
+        currentTable_ = static_cast<int>(ls_.tableNames.size()) - 1;
+    } else if (kw == "environment") {
+        if (trimView(value).empty()) {
+            diags_.error(loc, "expected an environment name after 'environment:'");
+            return;
+        }
+        ls_.environment.push_back({std::string(trimView(value)), loc});
+    } else if (kw == "table schedule") {
+        parseSchedule(line, valueStart);
+    } else if (kw == "seed") {
+        if (!constantValue(line, valueStart, v)) return;
+        if (v < 0 || v != std::floor(v)) {
+            diags_.error(loc, "seed must be a whole number >= 0");
+            return;
+        }
+        ls_.seed = static_cast<std::uint64_t>(v);
+    }
+}
+
+// table schedule: NAME COUNT, NAME COUNT, ..., NAME [COUNT] [, repeat]
+void Parser::parseSchedule(const SourceLine& line, std::size_t valueStart) {
+    if (!rawSchedule_.empty() || scheduleLine_) {
+        diags_.error(at(line, firstNonBlank(line.text)), "a second 'table schedule:'");
+        return;
+    }
+    scheduleLine_ = line.number;
+    std::string_view value = std::string_view(line.text).substr(valueStart);
+    std::size_t pos = 0;
+    while (pos <= value.size()) {
+        std::size_t comma = findTopLevel(value, ',', pos);
+        if (comma == std::string_view::npos) comma = value.size();
+        std::string_view item = value.substr(pos, comma - pos);
+        std::size_t lead = firstNonBlank(item);
+        std::size_t col = valueStart + pos + (lead == std::string_view::npos ? 0 : lead);
+        std::string_view t = trimView(item);
+        if (t.empty()) {
+            diags_.error(at(line, col), "expected 'TABLE STEPS' in the schedule");
+            return;
+        }
+        if (lower(t) == "repeat") {
+            if (comma != value.size()) {
+                diags_.error(at(line, col), "'repeat' must end the schedule");
                 return;
             }
+            ls_.scheduleRepeats = true;
+            break;
         }
-        if (kw == "ignore") {
-            sawIgnore_ = true;
-            for (const auto& t : toks) ls_.ignored[t.symbol] = true;
-        } else {
-            if (!sawConsider_) std::fill(ls_.ignored.begin(), ls_.ignored.end(), true);
-            sawConsider_ = true;
-            for (const auto& t : toks) ls_.ignored[t.symbol] = false;
-        }
-    }
-
-    // ---- productions -----------------------------------------------------------------
-
-    bool parsePatterns(const SourceLine& line, std::size_t from, std::size_t to,
-                       std::vector<ModulePattern>& out, std::vector<std::string>& formals,
-                       const char* what, bool allowEmpty) {
-        std::string_view part = std::string_view(line.text).substr(from, to - from);
-        if (trimView(part) == "*" && allowEmpty) return true;
-        if (isBlank(part)) {
-            if (allowEmpty) return true;
-            diags_.error(at(line, from), std::string("expected the ") + what + " (use '*' for none)");
-            return false;
-        }
-        std::vector<ModuleToken> toks;
-        SourceLocation loc = at(line, from);
-        if (!tokenizeModules(part, loc, static_cast<int>(from) + 1, ls_.symbols, toks, diags_))
-            return false;
-        for (auto& t : toks) {
-            ModulePattern p;
-            p.symbol = t.symbol;
-            p.location = src_.at(line.number, t.column);
-            for (const auto& a : t.args) {
-                std::string_view name = trimView(a.text);
-                bool ok = !name.empty() && (std::isalpha(static_cast<unsigned char>(name[0])) ||
-                                            name[0] == '_');
-                for (char c : name)
-                    ok = ok && (std::isalnum(static_cast<unsigned char>(c)) || c == '_');
-                if (!ok) {
-                    diags_.error(src_.at(line.number, a.column + static_cast<int>(a.text.find(name[0]))),
-                                 std::string("a ") + what + " names its parameters (e.g. A(x,y)); '" +
-                                     std::string(name) + "' is not a name");
-                    return false;
-                }
-                if (std::find(formals.begin(), formals.end(), name) != formals.end()) {
-                    diags_.error(src_.at(line.number, a.column),
-                                 "parameter '" + std::string(name) + "' is bound twice in this production");
-                    return false;
-                }
-                formals.emplace_back(name);
-                p.formals.emplace_back(name);
-            }
-            out.push_back(std::move(p));
-        }
-        return true;
-    }
-
-    void parseProduction(const SourceLine& line, Arrow arrow) {
-        std::string_view t = line.text;
-        Production prod;
-        std::size_t lineStart = firstNonBlank(t);
-        prod.location = at(line, lineStart);
-
-        // Left of the arrow: [lc <] pred [> rc] [: condition]
-        std::string_view lhs = t.substr(0, arrow.pos);
-        std::size_t condColon = findTopLevel(lhs, ':');
-        std::size_t patEnd = condColon == std::string_view::npos ? arrow.pos : condColon;
-        std::string_view pat = lhs.substr(0, patEnd);
-        std::size_t lt = findTopLevel(pat, '<');
-        std::size_t gt = findTopLevel(pat, '>', lt == std::string_view::npos ? 0 : lt + 1);
-        std::size_t predFrom = lt == std::string_view::npos ? 0 : lt + 1;
-        std::size_t predTo = gt == std::string_view::npos ? patEnd : gt;
-
-        std::vector<std::string> formals;
-        if (lt != std::string_view::npos &&
-            !parsePatterns(line, 0, lt, prod.left, formals, "left context", true))
-            return;
-        if (!parsePatterns(line, predFrom, predTo, prod.predecessor, formals, "predecessor", false))
-            return;
-        if (prod.predecessor.empty()) {
-            diags_.error(at(line, predFrom), "expected a predecessor before the arrow");
-            return;
-        }
-        if (gt != std::string_view::npos &&
-            !parsePatterns(line, gt + 1, patEnd, prod.right, formals, "right context", true))
-            return;
-        for (const auto* part : {&prod.left, &prod.predecessor}) {
-            for (const auto& m : *part) {
-                if (m.symbol == '[' || m.symbol == ']') {
-                    diags_.error(m.location, "brackets may not appear in a predecessor or left "
-                                             "context");
-                    return;
-                }
-            }
-        }
-        prod.slotCount = static_cast<int>(formals.size());
-
-        ExpressionScope scope;
-        scope.variables = formals;
-        scope.defines = &ls_.defines;
-        if (condColon != std::string_view::npos) {
-            std::string_view cond = lhs.substr(condColon + 1);
-            std::size_t off = firstNonBlank(cond);
-            if (off == std::string_view::npos || trimView(cond) == "*") {
-                // `: *` is cpfg's "no condition"
-            } else {
-                Expression e = compileExpression(trimView(cond), at(line, condColon + 1 + off),
-                                                 scope, diags_);
-                if (e.empty()) return;
-                prod.condition = std::move(e);
-            }
-        }
-
-        // Right of the arrow: successor [: probability]
-        std::size_t succFrom = arrow.pos + arrow.len;
-        std::string_view rhs = t.substr(succFrom);
-        std::size_t probColon = findLastTopLevel(rhs, ':');
-        std::size_t succTo = probColon == std::string_view::npos ? t.size() : succFrom + probColon;
-        if (probColon != std::string_view::npos) {
-            std::string_view prob = rhs.substr(probColon + 1);
-            std::size_t off = firstNonBlank(prob);
-            if (off == std::string_view::npos) {
-                diags_.error(at(line, succFrom + probColon + 1),
-                             "expected a probability after ':'");
+        std::size_t sp = t.find_first_of(" \t");
+        RawScheduleEntry e;
+        e.name = std::string(t.substr(0, sp));
+        e.location = at(line, col);
+        if (sp != std::string_view::npos) {
+            double steps = 0;
+            std::size_t countCol = col + sp + firstNonBlank(t.substr(sp));
+            ExpressionScope scope;
+            scope.defines = &ls_.defines;
+            DiagnosticList local;
+            Expression ex = compileExpression(trimView(t.substr(sp)), at(line, countCol), scope, local);
+            for (const auto& d : local.items()) diags_.add(d);
+            if (ex.empty()) return;
+            steps = ex.evaluate({});
+            if (steps < 0 || steps != std::floor(steps)) {
+                diags_.error(at(line, countCol), "a table runs for a whole number of steps >= 0");
                 return;
             }
-            Expression e = compileExpression(trimView(prob), at(line, succFrom + probColon + 1 + off),
-                                             scope, diags_);
+            e.steps = static_cast<int>(steps);
+        }
+        rawSchedule_.push_back(std::move(e));
+        pos = comma + 1;
+        if (comma == value.size()) break;
+    }
+}
+
+void Parser::parseAxiom(const SourceLine& line, std::size_t valueStart) {
+    std::string_view value = std::string_view(line.text).substr(valueStart);
+    SourceLocation loc = at(line, valueStart);
+    if (trimView(value) == "*") return;  // the empty axiom
+    std::vector<ModuleToken> toks;
+    if (!tokenizeModules(value, loc, static_cast<int>(valueStart) + 1, ls_.symbols, toks, diags_))
+        return;
+    if (toks.empty()) {
+        diags_.error(at(line, valueStart), "expected the axiom's modules after 'axiom:'");
+        return;
+    }
+    ExpressionScope scope;
+    scope.defines = &ls_.defines;
+    std::vector<double> args;
+    for (const auto& tok : toks) {
+        args.clear();
+        for (const auto& a : tok.args) {
+            SourceLocation aloc = src_.at(line.number, a.column);
+            DiagnosticList local;
+            Expression e = compileExpression(a.text, aloc, scope, local);
+            for (const auto& d : local.items()) diags_.add(d);
             if (e.empty()) return;
-            prod.probability = std::move(e);
-        }
-        std::string_view succ = t.substr(succFrom, succTo - succFrom);
-        if (isBlank(succ)) {
-            diags_.error(at(line, succFrom), "expected a successor after the arrow ('*' for "
-                                             "the empty string)");
-            return;
-        }
-        if (trimView(succ) != "*") {
-            std::vector<ModuleToken> toks;
-            if (!tokenizeModules(succ, at(line, succFrom), static_cast<int>(succFrom) + 1,
-                                 ls_.symbols, toks, diags_))
-                return;
-            for (const auto& tok : toks) {
-                SuccessorModule m;
-                m.symbol = tok.symbol;
-                for (const auto& a : tok.args) {
-                    std::size_t lead = a.text.find_first_not_of(" \t");
-                    Expression e = compileExpression(a.text, src_.at(line.number, a.column + static_cast<int>(lead)),
-                                                     scope, diags_);
-                    if (e.empty()) return;
-                    m.args.push_back(std::move(e));
-                }
-                prod.successor.push_back(std::move(m));
-            }
-            checkBrackets(toks, line, "successor");
-        }
-        if (section_ != Section::Main && prod.hasContext()) {
-            diags_.error(prod.location, std::string(section_ == Section::Decomposition
-                                                        ? "decomposition"
-                                                        : "homomorphism") +
-                                            " productions are context-free: remove the context");
-            return;
-        }
-        int depth = 0;
-        for (const auto& m : prod.right) {
-            depth += m.symbol == '[' ? 1 : m.symbol == ']' ? -1 : 0;
-            if (depth < 0) {
-                diags_.error(m.location, "unbalanced ']' in the right context");
+            try {
+                args.push_back(e.evaluate({}));
+            } catch (const Error& err) {
+                for (const auto& d : err.diagnostics()) diags_.add(d);
                 return;
             }
         }
-        if (depth != 0) {
-            diags_.error(prod.location, "unbalanced '[' in the right context");
-            return;
-        }
-        prod.table = currentTable_;
-        if (section_ == Section::Decomposition) ls_.decomposition.push_back(std::move(prod));
-        else if (section_ == Section::Homomorphism) ls_.homomorphism.push_back(std::move(prod));
-        else ls_.productions.push_back(std::move(prod));
+        ls_.axiom.push(tok.symbol, args);
     }
+    checkBrackets(toks, line, "axiom");
+}
 
-    void resolveSchedule() {
-        if (ls_.tableNames.empty()) {
-            if (scheduleLine_)
-                diags_.error(src_.at(scheduleLine_, 1), "'table schedule:' without any 'table:'");
-            return;
-        }
-        if (!scheduleLine_) {
-            diags_.error(src_.at(src_.lines.back().number, 0),
-                         "the L-system has tables but no 'table schedule:' saying which table "
-                         "applies at which step");
-            return;
-        }
-        for (std::size_t k = 0; k < rawSchedule_.size(); ++k) {
-            const auto& e = rawSchedule_[k];
-            auto it = std::find(ls_.tableNames.begin(), ls_.tableNames.end(), e.name);
-            if (it == ls_.tableNames.end()) {
-                std::string names;
-                for (const auto& n : ls_.tableNames) names += (names.empty() ? "" : ", ") + n;
-                diags_.error(e.location, "unknown table '" + e.name + "' (tables: " + names + ")");
+// An axiom or successor with unbalanced brackets is almost always a typo; say where.
+void Parser::checkBrackets(const std::vector<ModuleToken>& toks, const SourceLine& line,
+                   const char* what) {
+    std::vector<int> open;
+    for (const auto& t : toks) {
+        if (t.symbol == '[') open.push_back(t.column);
+        if (t.symbol == ']') {
+            if (open.empty()) {
+                diags_.error(src_.at(line.number, t.column),
+                             std::string("unbalanced ']' in the ") + what +
+                                 ": no '[' is open here");
                 return;
             }
-            if (e.steps < 0 && k + 1 != rawSchedule_.size()) {
-                diags_.error(e.location, "only the last table of a schedule may omit its step count");
-                return;
-            }
-            ls_.schedule.push_back({static_cast<int>(it - ls_.tableNames.begin()), e.steps});
-        }
-        if (ls_.scheduleRepeats && !rawSchedule_.empty() && rawSchedule_.back().steps < 0)
-            diags_.error(rawSchedule_.back().location, "a repeating schedule needs a step count for every table");
-    }
-
-    void finish() {
-        if (!sawAxiom_) {
-            int last = src_.lines.empty() ? 1 : src_.lines.back().number;
-            diags_.error(src_.at(last, 0), "no axiom: expected a line such as 'axiom: F'");
-        }
-        resolveSchedule();
-        warnShadowedProductions();
-        for (const auto& d : diags_.items())
-            if (d.severity == Severity::Warning) ls_.warnings.push_back(d);
-    }
-
-    static bool samePattern(const std::vector<ModulePattern>& a, const std::vector<ModulePattern>& b) {
-        if (a.size() != b.size()) return false;
-        for (std::size_t i = 0; i < a.size(); ++i)
-            if (a[i].symbol != b[i].symbol || a[i].formals.size() != b[i].formals.size()) return false;
-        return true;
-    }
-
-    // First applicable production wins; a context-free, unconditional production listed
-    // before a context-sensitive one for the same predecessor hides it for good.
-    void warnShadowedProductions() {
-        auto& ps = ls_.productions;
-        for (std::size_t j = 0; j < ps.size(); ++j) {
-            if (!ps[j].hasContext()) continue;
-            for (std::size_t i = 0; i < j; ++i) {
-                if (ps[i].hasContext() || ps[i].condition || ps[i].probability) continue;
-                if (ps[i].table != -1 && ps[i].table != ps[j].table) continue;
-                if (!samePattern(ps[i].predecessor, ps[j].predecessor)) continue;
-                diags_.warning(ps[j].location,
-                               "this context-sensitive production is never applied: the "
-                               "context-free production on line " +
-                                   std::to_string(ps[i].location.line) +
-                                   " has the same predecessor and comes first (list "
-                                   "context-sensitive productions first)");
-                break;
-            }
+            open.pop_back();
         }
     }
+    if (!open.empty())
+        diags_.error(src_.at(line.number, open.back()),
+                     std::string("unbalanced '[' in the ") + what + ": expected a matching ']'");
+}
 
-    const SourceText& src_;
-    const ParseOptions& options_;
-    DiagnosticList& diags_;
-    LSystem ls_;
-    std::map<std::string, int> defineLines_;
-    bool sawLsystemHeader_ = false;
-    bool sawAxiom_ = false;
-    int axiomLine_ = 0;
-    bool sawIgnore_ = false, sawConsider_ = false;
-    bool ended_ = false;
-    enum class Section { Main, Decomposition, Homomorphism } section_ = Section::Main;
-    int currentTable_ = -1;
-    struct RawScheduleEntry {
-        std::string name;
-        int steps = -1;
-        SourceLocation location;
-    };
-    std::vector<RawScheduleEntry> rawSchedule_;
-    int scheduleLine_ = 0;
-};
+void Parser::parseIgnore(const SourceLine& line, const std::string& kw, std::size_t valueStart) {
+    std::string_view value = std::string_view(line.text).substr(valueStart);
+    SourceLocation loc = at(line, valueStart);
+    if ((kw == "ignore" && sawConsider_) || (kw == "consider" && sawIgnore_)) {
+        diags_.error(loc, "use either 'ignore:' or 'consider:', not both");
+        return;
+    }
+    std::vector<ModuleToken> toks;
+    if (!tokenizeModules(value, loc, static_cast<int>(valueStart) + 1, ls_.symbols, toks, diags_))
+        return;
+    for (const auto& t : toks) {
+        if (t.hasParens) {
+            diags_.error(src_.at(line.number, t.column),
+                         "'" + kw + ":' lists module names without parameters");
+            return;
+        }
+    }
+    if (kw == "ignore") {
+        sawIgnore_ = true;
+        for (const auto& t : toks) ls_.ignored[t.symbol] = true;
+    } else {
+        if (!sawConsider_) std::fill(ls_.ignored.begin(), ls_.ignored.end(), true);
+        sawConsider_ = true;
+        for (const auto& t : toks) ls_.ignored[t.symbol] = false;
+    }
+}
 
-}  // namespace
+std::size_t Parser::errorCount() const {
+    std::size_t n = 0;
+    for (const auto& d : diags_.items()) n += d.severity == Severity::Error;
+    return n;
+}
+
+}  // namespace parsing
 
 LSystem parseLSystem(std::string_view text, const ParseOptions& options) {
     DiagnosticList diags;
     SourceText src;
     if (!prepareSource(text, options.fileName, src, diags)) throw Error(diags.items());
-    Parser parser(src, options, diags);
+    parsing::Parser parser(src, options, diags);
     LSystem ls = parser.run();
     if (diags.hasErrors()) {
         std::vector<Diagnostic> errors;

@@ -72,12 +72,11 @@ Derivation::Derivation(const LSystem& lsystem, DerivationOptions options)
 
 Derivation::~Derivation() = default;
 
-void Derivation::pruneCuts() {
-    // '%' removes itself and the rest of its branch: everything up to the ']' that closes
-    // the branch it stands in (or the end of the string on the main axis).
-    const ModuleString& s = *current_;
-    if (!containsSymbol(s, '%')) return;
-    ModuleString out;
+// '%' removes itself and the rest of its branch: everything up to the ']' that closes the
+// branch it stands in (or the end of the string on the main axis).
+static bool pruneCuts(const ModuleString& s, ModuleString& out) {
+    if (!containsSymbol(s, '%')) return false;
+    out.clear();
     out.reserve(s.size(), s.paramCount());
     if (s.hasParameters()) out.rawParamStart().assign(1, 0);
     for (std::size_t i = 0; i < s.size(); ++i) {
@@ -92,7 +91,7 @@ void Derivation::pruneCuts() {
         }
         out.push(s.symbol(i), s.params(i));
     }
-    *current_ = std::move(out);
+    return true;
 }
 
 void Derivation::decompose(int stepNumber) {
@@ -154,8 +153,11 @@ void Derivation::afterStep(int stepNumber) {
 
 void Derivation::step() {
     int stepNumber = steps_ + 1;
-    if (lsystem_.usesCut()) pruneCuts();
-    rules_->step(*current_, *next_, stepNumber, lsystem_.tableForStep(stepNumber),
+    // Cut first, into a scratch string, so that a step that fails leaves current_ intact.
+    ModuleString pruned;
+    const ModuleString& source =
+        lsystem_.usesCut() && pruneCuts(*current_, pruned) ? pruned : *current_;
+    rules_->step(source, *next_, stepNumber, lsystem_.tableForStep(stepNumber),
                  options_.memoryLimit);
     std::swap(current_, next_);
     ++steps_;

@@ -19,10 +19,11 @@ constexpr std::int32_t kConsumed = -2;  // part of a multi-module predecessor al
 constexpr std::size_t kParallelThreshold = 1 << 16;
 
 std::string humanBytes(double b) {
-    const char* units[] = {"bytes", "KB", "MB", "GB", "TB", "PB", "EB"};
+    // Binary units, as --memory-limit reads them (2G is 2 GiB).
+    const char* units[] = {"bytes", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"};
     int u = 0;
-    while (b >= 1000 && u < 6) {
-        b /= 1000;
+    while (b >= 1024 && u < 6) {
+        b /= 1024;
         ++u;
     }
     char buf[64];

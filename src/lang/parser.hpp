@@ -1,0 +1,113 @@
+// The parser of the .l language, shared by the files that implement it: parser.cpp reads
+// lines, declarations and keyword directives; production_parser.cpp reads productions and
+// checks the L-system as a whole.
+#pragma once
+
+#include <map>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "graftal/lsystem.hpp"
+#include "module_lexer.hpp"
+#include "source_text.hpp"
+
+namespace graftal::parsing {
+
+std::string lower(std::string_view s);
+bool isBlank(std::string_view s);
+std::size_t firstNonBlank(std::string_view s);  // npos when blank
+std::string_view trimView(std::string_view s);
+
+struct Arrow {
+    std::size_t pos = std::string_view::npos;
+    std::size_t len = 0;
+};
+
+// `-->` wins; then the book's `→`; then `->` (not the `<-` `>` of a context like `<->`).
+Arrow findArrow(std::string_view s);
+// Finds `c` outside parentheses, from `from`; npos when absent.
+std::size_t findTopLevel(std::string_view s, char c, std::size_t from = 0);
+std::size_t findLastTopLevel(std::string_view s, char c);
+
+// The keywords a line may start with, in the spelling the messages use.
+extern const std::vector<std::string> kKeywords;
+
+class Parser {
+public:
+    Parser(const SourceText& src, const ParseOptions& options, DiagnosticList& diags)
+        : src_(src), options_(options), diags_(diags) {}
+
+    LSystem run();
+
+private:
+    SourceLocation at(const SourceLine& line, std::size_t offset) const;
+
+    void collectDeclarations();
+
+    static bool isModuleDeclaration(std::string_view rest);
+
+    static std::string normaliseKeyword(std::string_view s);
+
+    void parseDefine(const SourceLine& line, std::size_t start);
+
+    void parseModuleDeclaration(const SourceLine& line, std::size_t start);
+
+    void parseLine(const SourceLine& line);
+
+    // ---- directives ------------------------------------------------------------------
+
+    bool constantValue(const SourceLine& line, std::size_t from, double& value);
+
+    void parseDirective(const SourceLine& line, const std::string& kw, std::size_t valueStart);
+
+    void parseSchedule(const SourceLine& line, std::size_t valueStart);
+
+    void parseAxiom(const SourceLine& line, std::size_t valueStart);
+
+    void checkBrackets(const std::vector<ModuleToken>& toks, const SourceLine& line,
+                       const char* what);
+
+    void parseIgnore(const SourceLine& line, const std::string& kw, std::size_t valueStart);
+
+    // ---- productions -----------------------------------------------------------------
+
+    bool parsePatterns(const SourceLine& line, std::size_t from, std::size_t to,
+                       std::vector<ModulePattern>& out, std::vector<std::string>& formals,
+                       const char* what, bool allowEmpty);
+
+    void parseProduction(const SourceLine& line, Arrow arrow);
+
+    void resolveSchedule();
+
+    void finish();
+
+    static bool samePattern(const std::vector<ModulePattern>& a, const std::vector<ModulePattern>& b);
+
+    void warnShadowedProductions();
+
+    static constexpr std::size_t kMaxErrors = 20;
+    std::size_t errorCount() const;
+
+    const SourceText& src_;
+    const ParseOptions& options_;
+    DiagnosticList& diags_;
+    LSystem ls_;
+    std::map<std::string, int> defineLines_;
+    bool sawLsystemHeader_ = false;
+    bool sawAxiom_ = false;
+    int axiomLine_ = 0;
+    bool sawIgnore_ = false, sawConsider_ = false;
+    bool ended_ = false;
+    enum class Section { Main, Decomposition, Homomorphism } section_ = Section::Main;
+    int currentTable_ = -1;
+    struct RawScheduleEntry {
+        std::string name;
+        int steps = -1;
+        SourceLocation location;
+    };
+    std::vector<RawScheduleEntry> rawSchedule_;
+    int scheduleLine_ = 0;
+};
+
+}  // namespace graftal::parsing

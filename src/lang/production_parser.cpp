@@ -1,0 +1,248 @@
+// Productions of the .l language, and the checks over the whole L-system once every line
+// is read (see parser.hpp).
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+
+#include "parser.hpp"
+
+namespace graftal::parsing {
+
+bool Parser::parsePatterns(const SourceLine& line, std::size_t from, std::size_t to,
+                   std::vector<ModulePattern>& out, std::vector<std::string>& formals,
+                   const char* what, bool allowEmpty) {
+    std::string_view part = std::string_view(line.text).substr(from, to - from);
+    if (trimView(part) == "*" && allowEmpty) return true;
+    if (isBlank(part)) {
+        if (allowEmpty) return true;
+        diags_.error(at(line, from), std::string("expected the ") + what + " (use '*' for none)");
+        return false;
+    }
+    std::vector<ModuleToken> toks;
+    SourceLocation loc = at(line, from);
+    if (!tokenizeModules(part, loc, static_cast<int>(from) + 1, ls_.symbols, toks, diags_))
+        return false;
+    for (auto& t : toks) {
+        ModulePattern p;
+        p.symbol = t.symbol;
+        p.location = src_.at(line.number, t.column);
+        for (const auto& a : t.args) {
+            std::string_view name = trimView(a.text);
+            bool ok = !name.empty() && (std::isalpha(static_cast<unsigned char>(name[0])) ||
+                                        name[0] == '_');
+            for (char c : name)
+                ok = ok && (std::isalnum(static_cast<unsigned char>(c)) || c == '_');
+            if (!ok) {
+                diags_.error(src_.at(line.number, a.column + static_cast<int>(a.text.find(name[0]))),
+                             std::string("a ") + what + " names its parameters (e.g. A(x,y)); '" +
+                                 std::string(name) + "' is not a name");
+                return false;
+            }
+            if (std::find(formals.begin(), formals.end(), name) != formals.end()) {
+                diags_.error(src_.at(line.number, a.column),
+                             "parameter '" + std::string(name) + "' is bound twice in this production");
+                return false;
+            }
+            formals.emplace_back(name);
+            p.formals.emplace_back(name);
+        }
+        out.push_back(std::move(p));
+    }
+    return true;
+}
+
+void Parser::parseProduction(const SourceLine& line, Arrow arrow) {
+    std::string_view t = line.text;
+    Production prod;
+    std::size_t lineStart = firstNonBlank(t);
+    prod.location = at(line, lineStart);
+
+    // Left of the arrow: [lc <] pred [> rc] [: condition]
+    std::string_view lhs = t.substr(0, arrow.pos);
+    std::size_t condColon = findTopLevel(lhs, ':');
+    std::size_t patEnd = condColon == std::string_view::npos ? arrow.pos : condColon;
+    std::string_view pat = lhs.substr(0, patEnd);
+    std::size_t lt = findTopLevel(pat, '<');
+    std::size_t gt = findTopLevel(pat, '>', lt == std::string_view::npos ? 0 : lt + 1);
+    std::size_t predFrom = lt == std::string_view::npos ? 0 : lt + 1;
+    std::size_t predTo = gt == std::string_view::npos ? patEnd : gt;
+
+    std::vector<std::string> formals;
+    if (lt != std::string_view::npos &&
+        !parsePatterns(line, 0, lt, prod.left, formals, "left context", true))
+        return;
+    if (!parsePatterns(line, predFrom, predTo, prod.predecessor, formals, "predecessor", false))
+        return;
+    if (prod.predecessor.empty()) {
+        diags_.error(at(line, predFrom), "expected a predecessor before the arrow");
+        return;
+    }
+    if (gt != std::string_view::npos &&
+        !parsePatterns(line, gt + 1, patEnd, prod.right, formals, "right context", true))
+        return;
+    for (const auto* part : {&prod.left, &prod.predecessor}) {
+        for (const auto& m : *part) {
+            if (m.symbol == '[' || m.symbol == ']') {
+                diags_.error(m.location, "brackets may not appear in a predecessor or left "
+                                         "context");
+                return;
+            }
+        }
+    }
+    prod.slotCount = static_cast<int>(formals.size());
+
+    ExpressionScope scope;
+    scope.variables = formals;
+    scope.defines = &ls_.defines;
+    if (condColon != std::string_view::npos) {
+        std::string_view cond = lhs.substr(condColon + 1);
+        std::size_t off = firstNonBlank(cond);
+        if (off == std::string_view::npos || trimView(cond) == "*") {
+            // `: *` is cpfg's "no condition"
+        } else {
+            Expression e = compileExpression(trimView(cond), at(line, condColon + 1 + off),
+                                             scope, diags_);
+            if (e.empty()) return;
+            prod.condition = std::move(e);
+        }
+    }
+
+    // Right of the arrow: successor [: probability]
+    std::size_t succFrom = arrow.pos + arrow.len;
+    std::string_view rhs = t.substr(succFrom);
+    std::size_t probColon = findLastTopLevel(rhs, ':');
+    std::size_t succTo = probColon == std::string_view::npos ? t.size() : succFrom + probColon;
+    if (probColon != std::string_view::npos) {
+        std::string_view prob = rhs.substr(probColon + 1);
+        std::size_t off = firstNonBlank(prob);
+        if (off == std::string_view::npos) {
+            diags_.error(at(line, succFrom + probColon + 1),
+                         "expected a probability after ':'");
+            return;
+        }
+        Expression e = compileExpression(trimView(prob), at(line, succFrom + probColon + 1 + off),
+                                         scope, diags_);
+        if (e.empty()) return;
+        prod.probability = std::move(e);
+    }
+    std::string_view succ = t.substr(succFrom, succTo - succFrom);
+    if (isBlank(succ)) {
+        diags_.error(at(line, succFrom), "expected a successor after the arrow ('*' for "
+                                         "the empty string)");
+        return;
+    }
+    if (trimView(succ) != "*") {
+        std::vector<ModuleToken> toks;
+        if (!tokenizeModules(succ, at(line, succFrom), static_cast<int>(succFrom) + 1,
+                             ls_.symbols, toks, diags_))
+            return;
+        for (const auto& tok : toks) {
+            SuccessorModule m;
+            m.symbol = tok.symbol;
+            for (const auto& a : tok.args) {
+                std::size_t lead = a.text.find_first_not_of(" \t");
+                Expression e = compileExpression(a.text, src_.at(line.number, a.column + static_cast<int>(lead)),
+                                                 scope, diags_);
+                if (e.empty()) return;
+                m.args.push_back(std::move(e));
+            }
+            prod.successor.push_back(std::move(m));
+        }
+        checkBrackets(toks, line, "successor");
+    }
+    if (section_ != Section::Main && prod.hasContext()) {
+        diags_.error(prod.location, std::string(section_ == Section::Decomposition
+                                                    ? "decomposition"
+                                                    : "homomorphism") +
+                                        " productions are context-free: remove the context");
+        return;
+    }
+    int depth = 0;
+    for (const auto& m : prod.right) {
+        depth += m.symbol == '[' ? 1 : m.symbol == ']' ? -1 : 0;
+        if (depth < 0) {
+            diags_.error(m.location, "unbalanced ']' in the right context");
+            return;
+        }
+    }
+    if (depth != 0) {
+        diags_.error(prod.location, "unbalanced '[' in the right context");
+        return;
+    }
+    prod.table = currentTable_;
+    if (section_ == Section::Decomposition) ls_.decomposition.push_back(std::move(prod));
+    else if (section_ == Section::Homomorphism) ls_.homomorphism.push_back(std::move(prod));
+    else ls_.productions.push_back(std::move(prod));
+}
+
+void Parser::resolveSchedule() {
+    if (ls_.tableNames.empty()) {
+        if (scheduleLine_)
+            diags_.error(src_.at(scheduleLine_, 1), "'table schedule:' without any 'table:'");
+        return;
+    }
+    if (!scheduleLine_) {
+        diags_.error(src_.at(src_.lines.back().number, 1),
+                     "the L-system has tables but no 'table schedule:' saying which table "
+                     "applies at which step");
+        return;
+    }
+    for (std::size_t k = 0; k < rawSchedule_.size(); ++k) {
+        const auto& e = rawSchedule_[k];
+        auto it = std::find(ls_.tableNames.begin(), ls_.tableNames.end(), e.name);
+        if (it == ls_.tableNames.end()) {
+            std::string names;
+            for (const auto& n : ls_.tableNames) names += (names.empty() ? "" : ", ") + n;
+            diags_.error(e.location, "unknown table '" + e.name + "' (tables: " + names + ")");
+            return;
+        }
+        if (e.steps < 0 && k + 1 != rawSchedule_.size()) {
+            diags_.error(e.location, "only the last table of a schedule may omit its step count");
+            return;
+        }
+        ls_.schedule.push_back({static_cast<int>(it - ls_.tableNames.begin()), e.steps});
+    }
+    if (ls_.scheduleRepeats && !rawSchedule_.empty() && rawSchedule_.back().steps < 0)
+        diags_.error(rawSchedule_.back().location, "a repeating schedule needs a step count for every table");
+}
+
+void Parser::finish() {
+    if (!sawAxiom_) {
+        int last = src_.lines.empty() ? 1 : src_.lines.back().number;
+        diags_.error(src_.at(last, 1), "no axiom: expected a line such as 'axiom: F'");
+    }
+    resolveSchedule();
+    warnShadowedProductions();
+    for (const auto& d : diags_.items())
+        if (d.severity == Severity::Warning) ls_.warnings.push_back(d);
+}
+
+bool Parser::samePattern(const std::vector<ModulePattern>& a, const std::vector<ModulePattern>& b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+        if (a[i].symbol != b[i].symbol || a[i].formals.size() != b[i].formals.size()) return false;
+    return true;
+}
+
+// First applicable production wins; a context-free, unconditional production listed
+// before a context-sensitive one for the same predecessor hides it for good.
+void Parser::warnShadowedProductions() {
+    auto& ps = ls_.productions;
+    for (std::size_t j = 0; j < ps.size(); ++j) {
+        if (!ps[j].hasContext()) continue;
+        for (std::size_t i = 0; i < j; ++i) {
+            if (ps[i].hasContext() || ps[i].condition || ps[i].probability) continue;
+            if (ps[i].table != -1 && ps[i].table != ps[j].table) continue;
+            if (!samePattern(ps[i].predecessor, ps[j].predecessor)) continue;
+            diags_.warning(ps[j].location,
+                           "this context-sensitive production is never applied: the "
+                           "context-free production on line " +
+                               std::to_string(ps[i].location.line) +
+                               " has the same predecessor and comes first (list "
+                               "context-sensitive productions first)");
+            break;
+        }
+    }
+}
+
+}  // namespace graftal::parsing
