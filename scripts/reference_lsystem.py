@@ -353,22 +353,22 @@ def turtle2d(ls, s):
     polygons = 0
     stack = []
     for m in s:
-        if m == "F" or m == "f":
+        if m in ("F", "f", "G", "g"):  # G and g move without a polygon vertex, as in cpfg
             if exact:
                 dx, dy = dirs[h % steps]
             else:
                 a = math.radians(90.0 + h)
                 dx, dy = math.cos(a), math.sin(a)
-            if m == "F":
+            if m in ("F", "G"):
                 extend(x, y)
             x += dx
             y += dy
             minx, maxx = min(minx, x), max(maxx, x)
             miny, maxy = min(miny, y), max(maxy, y)
-            if m == "F":
+            if m in ("F", "G"):
                 segments += 1
                 extend(x, y)
-            if in_polygon:
+            if in_polygon and m in ("F", "f"):
                 extend(x, y)
         elif m == "+":
             h += sign * (1 if exact else ls.delta)
@@ -400,7 +400,7 @@ def turtle2d(ls, s):
 
 
 def count_segments(s):
-    return sum(1 for m in s if m == "F")
+    return sum(1 for m in s if m in ("F", "G"))
 
 
 def is_3d(ls):

@@ -90,5 +90,6 @@ TEST(Turtle, ColourAndWidthAttributesArePushedWithTheState) {
     EXPECT_EQ(s.segments[1].color, 1);
     EXPECT_LT(s.segments[1].width, 1.0f);
     EXPECT_EQ(s.segments[2].color, 0);
-    EXPECT_EQ(s.segments[2].width, 1.0f);
+    EXPECT_EQ(s.segments[2].width, s.baseWidth);
+    EXPECT_FLOAT_EQ(s.baseWidth, 0.1f) << "the default stem diameter";
 }

@@ -39,7 +39,6 @@ public:
 
 private:
     void afterStep(int stepNumber);
-    void pruneCuts();
     void decompose(int stepNumber);
     void answerQueries(int stepNumber);
 

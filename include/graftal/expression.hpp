@@ -37,7 +37,8 @@ public:
     Expression() = default;
 
     // Evaluates with `slots` holding the bound variables. Throws Error (with this
-    // expression's location) on a division by zero or a domain error.
+    // expression's location) on a division by zero or a domain error (a function or ^
+    // giving nan or infinity).
     double evaluate(std::span<const double> slots, const EvalContext* ctx = nullptr) const;
 
     bool isConstant() const { return code_.size() == 1 && code_[0].op == Op::Const; }

@@ -1,12 +1,21 @@
 // Writers: one file per format under src/output/. Each takes a Scene and options.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
+#include <functional>
+#include <memory>
+#include <span>
+#include <vector>
 #include <optional>
 #include <ostream>
 #include <string>
 
 #include "graftal/scene.hpp"
+
+namespace graftal {
+struct Mesh;
+}
 
 namespace graftal {
 
@@ -33,14 +42,50 @@ struct ImageTransform {
 
 // The line width in pixels a width-1 segment gets when RenderOptions::lineWidth is 0.
 double defaultLineWidth(const Scene& scene, const RenderOptions& o);
+// The same from totals a streamed first pass gathers: `ink` is the sum of inkLength().
+double defaultLineWidth(double ink, bool anySegments, const Bounds& bounds, const RenderOptions& o);
+// A segment's length times its width relative to `baseWidth`, in model units.
+double inkLength(const Segment& s, float baseWidth);
+
+// A 2D PNG drawn while the geometry streams in, never holding it: for strings too large
+// to keep. The bounds, ink total and base width come from a first, measuring pass; the
+// picture then matches writePng's for scenes whose segments share one colour and width
+// and that have no polygons (writePng draws polygons first and groups strokes by width).
+class StreamedPng {
+public:
+    StreamedPng(const RenderOptions& o, const Bounds& bounds, double ink, bool anySegments,
+                float baseWidth, std::vector<Rgb> palette, std::filesystem::path path);
+    ~StreamedPng();
+    StreamedPng(const StreamedPng&) = delete;
+    StreamedPng& operator=(const StreamedPng&) = delete;
+
+    void segment(const Segment& s);
+    void polygon(std::span<const Vec3> vertices, std::uint16_t color);
+    void finish();  // writes the file atomically; throws Error
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
 
 void writeSvg(const Scene& scene, const RenderOptions& o, std::ostream& out);
 void writePng(const Scene& scene, const RenderOptions& o, const std::filesystem::path& path);
 void writePdf(const Scene& scene, const RenderOptions& o, const std::filesystem::path& path);
 
+// 3D files of a mesh. Each writes atomically (temporary file, then rename) and throws Error.
+void writeObj(const Mesh& mesh, const std::filesystem::path& path);  // + .mtl beside it
+void writePly(const Mesh& mesh, const std::filesystem::path& path);  // binary, vertex colours
+void writeGlb(const Mesh& mesh, const std::filesystem::path& path);  // glTF 2.0 binary
+
 enum class ImageFormat { Svg, Png, Pdf };
 // From the file name's extension (case-insensitive); nullopt for an unknown one.
 std::optional<ImageFormat> imageFormatFor(const std::filesystem::path& path);
+
+// Calls write(temporary) for a temporary file beside `path` and renames it into place
+// when write returns; on any failure the temporary is removed and nothing is left at
+// `path`. Errors name `path`, never the temporary. Every file writer goes through this.
+void writeFileAtomically(const std::filesystem::path& path,
+                         const std::function<void(const std::filesystem::path&)>& write);
 
 // Writes by extension, atomically: the picture goes to a temporary file beside `path`
 // that is renamed into place only when complete, so a failure never leaves a partial

@@ -5,6 +5,7 @@
 #include <limits>
 #include <ostream>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace graftal {
@@ -23,6 +24,8 @@ struct Rgb {
     friend bool operator==(const Rgb&, const Rgb&) = default;
 };
 
+std::ostream& operator<<(std::ostream& os, const Rgb& c);  // #rrggbb
+
 struct Bounds {
     Vec3 min{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
              std::numeric_limits<double>::infinity()};
@@ -36,11 +39,30 @@ struct Bounds {
 
 std::ostream& operator<<(std::ostream& os, const Bounds& b);
 
-// A drawn line. Width is relative to the default line width (1 = default); colour is an
-// index into Scene::palette.
+inline constexpr std::uint32_t kNoSegment = 0xFFFFFFFFu;
+
+// A drawn segment of an axis. `width` is the turtle's width attribute: the diameter of the
+// stem in model units when drawn as a cylinder, and relative to Scene::baseWidth for 2D
+// line art. `color` indexes Scene::palette. `previous` is the segment this one continues
+// along the same axis (kNoSegment at the start of an axis), so that a mesher can join
+// consecutive cylinders without cracks; `up` is the turtle's up vector U at the segment,
+// which fixes the orientation of a cylinder's cross-section.
 struct Segment {
     Vec3 a, b;
     float width = 1;
+    std::uint16_t color = 0;
+    std::uint32_t previous = kNoSegment;
+    Vec3 up{0, 0, 1};
+};
+
+// A predefined surface (a bicubic patch set from a .s file) placed at a turtle frame: the
+// surface's contact point goes to `origin`, its heading to H and its up vector to U (as
+// cpfg places surfaces), scaled by `scale`.
+struct SurfaceInstance {
+    std::uint32_t surface = 0;  // index into Scene::surfaceNames
+    Vec3 origin;
+    Vec3 heading{0, 1, 0}, left{-1, 0, 0}, up{0, 0, 1};
+    double scale = 1;
     std::uint16_t color = 0;
 };
 
@@ -52,6 +74,13 @@ public:
     std::vector<Vec3> polygonVertices;
     std::vector<std::uint32_t> polygonStart{0};
     std::vector<std::uint16_t> polygonColor;
+    // Predefined surfaces placed by `~name`; the names are resolved by a SurfaceLibrary.
+    std::vector<SurfaceInstance> surfaces;
+    std::vector<std::string> surfaceNames;
+    // The width a segment has when the turtle never changed it: what 2D line art scales by.
+    float baseWidth = 1;
+    // True when anything left the z = 0 plane: 3D outputs and views make sense.
+    bool is3D = false;
     // Colour index -> colour. Indices past the end wrap around.
     std::vector<Rgb> palette = defaultPalette();
 

@@ -3,10 +3,14 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <cmath>
+#include <cstdlib>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
 #include "graftal/derivation.hpp"
+#include "graftal/growth.hpp"
+#include "graftal/streaming.hpp"
 #include "graftal/lsystem.hpp"
 #include "graftal/turtle.hpp"
 
@@ -20,32 +24,94 @@ void printWarnings(const LSystem& ls) {
     for (const auto& w : ls.warnings) std::cerr << w.toString() << '\n';
 }
 
-struct Derived {
-    LSystem lsystem;
-    ModuleString modules;
-    int steps = 0;
-};
+nlohmann::ordered_json point(const Vec3& p) { return {p.x, p.y, p.z}; }
 
-Derived loadAndDerive(const InputOptions& in) {
-    ParseOptions po;
-    po.defines = in.defines;
-    Derived d{loadLSystem(in.file, po), {}, 0};
-    printWarnings(d.lsystem);
+}  // namespace
+
+void note(const InputOptions& in, const std::string& message) {
+    if (!in.quiet) std::cerr << "graftal: note: " << message << '\n';
+}
+
+Loaded loadInput(const InputOptions& in) {
     if (in.steps && *in.steps < 0)
         throw usageError("-n " + std::to_string(*in.steps) +
                          ": the derivation length must be 0 or more");
-    d.steps = in.steps.value_or(d.lsystem.derivationLength);
+    ParseOptions po;
+    po.defines = in.defines;
+    Loaded l{loadLSystem(in.file, po), 0};
+    if (!in.quiet) printWarnings(l.lsystem);
+    l.steps = in.steps.value_or(l.lsystem.derivationLength);
+    return l;
+}
+
+DerivationOptions derivationOptions(const InputOptions& in) {
     DerivationOptions opts;
     opts.memoryLimit = in.memoryLimit;
     opts.seed = in.seed;
     opts.threads = in.threads;
-    d.modules = derive(d.lsystem, d.steps, opts);
+    return opts;
+}
+
+bool chooseStreaming(const Loaded& l, const InputOptions& in, bool canStream) {
+    std::string obstacle = streamingObstacle(l.lsystem);
+    if (in.stream) {
+        if (!obstacle.empty())
+            throw Error(SourceLocation{l.lsystem.file, 0, 0}, "--stream: this L-system cannot be streamed: " + obstacle);
+        if (!canStream) throw usageError("--stream is not available for this output");
+        return true;
+    }
+    GrowthPrediction g = predictGrowth(l.lsystem, l.steps);
+    if (g.expectedModules.size() < 2) return false;
+    // Streaming needs no memory, but time grows with the string: past this many modules a
+    // run would take hours, so it is refused with a message rather than started.
+    const double streamLimit = static_cast<double>(in.streamLimit);
+    // The last step holds the previous string and the new one; parameters take more.
+    double perModule = l.lsystem.isParametric() ? 2 + 4 + 8 * 2 : 2;
+    double last = g.expectedModules.back(), previous = g.expectedModules[g.expectedModules.size() - 2];
+    double bytes = (last + previous) * perModule;
+    if (bytes <= static_cast<double>(in.memoryLimit)) return false;
+    std::string size = g.exact ? g.modules.back().toString() : "about " + formatNumber(std::round(last));
+    if (canStream && obstacle.empty() && last > streamLimit)
+        obstacle = "more than --stream-limit " + formatNumber(streamLimit) + " modules";
+    if (canStream && obstacle.empty()) {
+        note(in, "the string would have " + size + " modules, more than --memory-limit holds; "
+                 "streaming it instead");
+        return true;
+    }
+    throw Error(SourceLocation{l.lsystem.file, 0, 0},
+                "derivation step " + std::to_string(l.steps) + " would make a string of " + size +
+                    " modules (about " + formatNumber(std::round(bytes / (1 << 20))) +
+                    " MiB), more than the memory limit of " +
+                    formatNumber(std::round(static_cast<double>(in.memoryLimit) / (1 << 20))) +
+                    " MiB; lower the derivation length (-n) or raise --memory-limit" +
+                    (obstacle.empty() || !canStream ? std::string()
+                                                    : " (it cannot be streamed: " + obstacle + ")"));
+}
+
+Derived loadAndDerive(const InputOptions& in) {
+    Loaded l = loadInput(in);
+    Derived d{std::move(l.lsystem), {}, l.steps};
+    d.modules = derive(d.lsystem, d.steps, derivationOptions(in));
     return d;
 }
 
-nlohmann::ordered_json point(const Vec3& p) { return {p.x, p.y, p.z}; }
-
-}  // namespace
+Vec3 parseVector(const std::string& option, const std::string& text) {
+    double v[3];
+    const char* p = text.c_str();
+    for (int k = 0; k < 3; ++k) {
+        char* end = nullptr;
+        v[k] = std::strtod(p, &end);
+        if (end == p || !std::isfinite(v[k]))
+            throw usageError(option + " '" + text + "': expected three numbers x,y,z");
+        p = end;
+        if (k < 2) {
+            if (*p != ',') throw usageError(option + " '" + text + "': expected three numbers x,y,z");
+            ++p;
+        }
+    }
+    if (*p) throw usageError(option + " '" + text + "': expected three numbers x,y,z");
+    return {v[0], v[1], v[2]};
+}
 
 std::size_t parseByteSize(const std::string& text) {
     double value = 0;
@@ -97,34 +163,132 @@ Rgb parseColor(const std::string& text) {
     return {((v >> 16) & 255) / 255.0f, ((v >> 8) & 255) / 255.0f, (v & 255) / 255.0f};
 }
 
+namespace {
+
+class PrintingSink : public ModuleSink {
+public:
+    explicit PrintingSink(const SymbolTable& t) : table_(t) { buffer_.reserve(1 << 16); }
+    ~PrintingSink() override { flush(); }
+    void module(Symbol s, std::span<const double> params) override {
+        buffer_ += table_.name(s);
+        if (!params.empty()) {
+            buffer_ += '(';
+            for (std::size_t k = 0; k < params.size(); ++k) {
+                if (k) buffer_ += ',';
+                buffer_ += formatNumber(params[k]);
+            }
+            buffer_ += ')';
+        }
+        if (buffer_.size() > (1 << 16) - 512) flush();
+    }
+    void flush() {
+        std::cout.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
+        buffer_.clear();
+    }
+
+private:
+    const SymbolTable& table_;
+    std::string buffer_;
+};
+
+}  // namespace
+
 int runDerive(const InputOptions& in, bool homomorphism) {
+    {
+        Loaded l = loadInput(in);
+        if (chooseStreaming(l, in, !homomorphism)) {
+            {
+                PrintingSink out(l.lsystem.symbols);
+                streamDerivation(l.lsystem, l.steps, out, derivationOptions(in));
+            }
+            std::cout << '\n';
+            std::cout.flush();
+            return std::cout ? 0 : 1;
+        }
+    }
     Derived d = loadAndDerive(in);
-    if (homomorphism) d.modules = applyHomomorphism(d.lsystem, d.modules);
+    if (homomorphism) d.modules = applyHomomorphism(d.lsystem, d.modules, derivationOptions(in));
     d.modules.print(std::cout, d.lsystem.symbols);
     std::cout << '\n';
     std::cout.flush();
     return std::cout ? 0 : 1;
 }
 
-int runStats(const InputOptions& in, bool geometry) {
-    Derived d = loadAndDerive(in);
-    std::vector<std::size_t> counts(d.lsystem.symbols.size(), 0);
-    for (Symbol s : d.modules.symbols()) ++counts[s];
+namespace {
+
+// Exact counts as JSON numbers while a double holds them exactly, as decimal strings after.
+nlohmann::ordered_json countJson(const BigCount& c) {
+    auto v = c.toUint64();
+    if (v && *v <= (std::uint64_t(1) << 53)) return *v;
+    return c.toString();
+}
+
+nlohmann::ordered_json symbolsJson(const SymbolTable& table, const std::vector<std::uint64_t>& counts) {
     std::vector<Symbol> present;
     for (std::size_t s = 0; s < counts.size(); ++s)
         if (counts[s]) present.push_back(static_cast<Symbol>(s));
-    std::sort(present.begin(), present.end(), [&](Symbol a, Symbol b) {
-        return d.lsystem.symbols.name(a) < d.lsystem.symbols.name(b);
-    });
+    std::sort(present.begin(), present.end(),
+              [&](Symbol a, Symbol b) { return table.name(a) < table.name(b); });
+    nlohmann::ordered_json symbols = nlohmann::ordered_json::object();
+    for (Symbol s : present) symbols[table.name(s)] = counts[s];
+    return symbols;
+}
+
+int printPrediction(const InputOptions& in, const Loaded& l) {
+    GrowthPrediction g = predictGrowth(l.lsystem, l.steps);
+    if (!g.exact && !g.expected)
+        throw Error(SourceLocation{l.lsystem.file, 0, 0}, "cannot predict the growth: " + g.reason);
     nlohmann::ordered_json j;
     j["file"] = in.file;
-    j["steps"] = d.steps;
-    j["modules"] = d.modules.size();
-    nlohmann::ordered_json symbols = nlohmann::ordered_json::object();
-    for (Symbol s : present) symbols[d.lsystem.symbols.name(s)] = counts[s];
-    j["symbols"] = symbols;
+    j["steps"] = l.steps;
+    j["prediction"] = g.exact ? "exact" : "expected";
+    if (g.exact) {
+        j["modules"] = countJson(g.modules.back());
+        nlohmann::ordered_json per = nlohmann::ordered_json::array();
+        for (const auto& c : g.modules) per.push_back(countJson(c));
+        j["modules_per_step"] = per;
+        nlohmann::ordered_json symbols = nlohmann::ordered_json::object();
+        for (std::size_t s = 0; s < g.symbolsAtEnd.size(); ++s)
+            if (!(g.symbolsAtEnd[s] == BigCount()))
+                symbols[l.lsystem.symbols.name(static_cast<Symbol>(s))] = countJson(g.symbolsAtEnd[s]);
+        j["symbols"] = symbols;
+    } else {
+        j["modules"] = g.expectedModules.back();
+        j["modules_per_step"] = g.expectedModules;
+    }
+    std::cout << j.dump(2) << '\n';
+    return 0;
+}
+
+}  // namespace
+
+int runStats(const InputOptions& in, bool geometry, bool predict) {
+    Loaded l = loadInput(in);
+    if (predict) return printPrediction(in, l);
+    nlohmann::ordered_json j;
+    j["file"] = in.file;
+    j["steps"] = l.steps;
+    if (chooseStreaming(l, in, true)) {
+        StreamedMeasure m = measureStreamed(l.lsystem, l.steps, derivationOptions(in), geometry);
+        j["modules"] = m.modules;
+        j["symbols"] = symbolsJson(l.lsystem.symbols, m.symbolCounts);
+        if (geometry) {
+            j["segments"] = m.segments;
+            j["polygons"] = m.polygons;
+            Bounds b = m.bounds;
+            if (b.empty()) b.extend(Vec3{});
+            j["bbox"] = {{"min", point(b.min)}, {"max", point(b.max)}};
+        }
+        std::cout << j.dump(2) << '\n';
+        return 0;
+    }
+    ModuleString modules = derive(l.lsystem, l.steps, derivationOptions(in));
+    std::vector<std::uint64_t> counts(l.lsystem.symbols.size(), 0);
+    for (Symbol s : modules.symbols()) ++counts[s];
+    j["modules"] = modules.size();
+    j["symbols"] = symbolsJson(l.lsystem.symbols, counts);
     if (geometry) {
-        Scene scene = interpret(d.lsystem, applyHomomorphism(d.lsystem, d.modules));
+        Scene scene = interpret(l.lsystem, applyHomomorphism(l.lsystem, modules, derivationOptions(in)));
         j["segments"] = scene.segments.size();
         j["polygons"] = scene.polygonCount();
         Bounds b = scene.bounds();
@@ -135,17 +299,5 @@ int runStats(const InputOptions& in, bool geometry) {
     return 0;
 }
 
-int runRender(const InputOptions& in, const RenderCommandOptions& out) {
-    if (!imageFormatFor(out.output))
-        throw usageError("-o " + out.output + ": unknown picture format (use .svg, .png or .pdf)");
-    Derived d = loadAndDerive(in);
-    Scene scene = interpret(d.lsystem, applyHomomorphism(d.lsystem, d.modules));
-    RenderOptions render = out.render;
-    // pfg's scale factor: the picture fills that percentage of the frame (100 = all of it).
-    double fill = std::clamp(d.lsystem.view.scaleFactor / 100.0, 0.01, 1.0);
-    render.margin = 0.5 - (0.5 - render.margin) * fill;
-    writeImage(scene, render, out.output);
-    return 0;
-}
 
 }  // namespace graftal::cli

@@ -7,6 +7,9 @@
 #include <optional>
 #include <string>
 
+#include "graftal/derivation.hpp"
+#include "graftal/lsystem.hpp"
+#include "graftal/module_string.hpp"
 #include "graftal/output.hpp"
 
 namespace graftal::cli {
@@ -18,16 +21,46 @@ struct InputOptions {
     std::optional<std::uint64_t> seed;
     std::size_t memoryLimit = std::size_t(2) << 30;
     unsigned threads = 0;
+    bool stream = false;  // --stream: expand depth-first, never hold the string
+    bool quiet = false;   // --quiet: no notes or warnings on stderr
+    std::uint64_t streamLimit = 100'000'000'000ull;  // --stream-limit: largest streamed string
 };
 
 struct RenderCommandOptions {
     std::string output;
     RenderOptions render;
+    std::string view;                    // --view front|back|side|top: 3D as 2D line art
+    std::optional<Vec3> viewpoint, target, up, light;
+    std::optional<double> fieldOfView;
+    int samplesPerPixel = 4;
+    int tubeSides = 8;
+    bool sizeGiven = false, backgroundGiven = false;
 };
 
 int runDerive(const InputOptions& in, bool homomorphism);
-int runStats(const InputOptions& in, bool geometry);
+int runStats(const InputOptions& in, bool geometry, bool predict);
 int runRender(const InputOptions& in, const RenderCommandOptions& out);
+
+// What derive, stats and render share: the parsed file, its derived string, the step count.
+struct Derived {
+    LSystem lsystem;
+    ModuleString modules;
+    int steps = 0;
+};
+Derived loadAndDerive(const InputOptions& in);
+
+// The file read and the step count settled, nothing derived yet.
+struct Loaded {
+    LSystem lsystem;
+    int steps = 0;
+};
+Loaded loadInput(const InputOptions& in);
+DerivationOptions derivationOptions(const InputOptions& in);
+// Whether to stream: when --stream asks (an error if the L-system cannot be streamed), or
+// when the predicted string would not fit the memory limit and `canStream` (then a note
+// says so). When it would not fit and cannot stream, refuses before allocating.
+bool chooseStreaming(const Loaded& l, const InputOptions& in, bool canStream);
+void note(const InputOptions& in, const std::string& message);
 
 // "2G", "512M", "1000000" -> bytes; throws Error on a malformed size.
 std::size_t parseByteSize(const std::string& text);
@@ -35,5 +68,7 @@ std::size_t parseByteSize(const std::string& text);
 void parseImageSize(const std::string& text, int& width, int& height);
 // "#rrggbb", "rrggbb" or a few names (black, white, ...) -> colour; throws Error.
 Rgb parseColor(const std::string& text);
+// "x,y,z" -> vector; throws Error naming the option.
+Vec3 parseVector(const std::string& option, const std::string& text);
 
 }  // namespace graftal::cli

@@ -26,6 +26,12 @@ void addInputOptions(CLI::App& cmd, graftal::cli::InputOptions& in, std::string&
         ->check(CLI::NonNegativeNumber);
     cmd.add_option("--memory-limit", memoryLimit, "largest string memory, e.g. 2G (default 2G)");
     cmd.add_option("--threads", in.threads, "worker threads (default: all cores)");
+    cmd.add_flag("--stream", in.stream,
+                 "expand depth-first into the output, never holding the string "
+                 "(L-systems without context; chosen by itself when the string would not fit)");
+    cmd.add_flag("-q,--quiet", in.quiet, "no notes or warnings on stderr");
+    cmd.add_option("--stream-limit", in.streamLimit,
+                   "largest string (modules) streamed when it does not fit in memory (1e11)");
 }
 
 }  // namespace
@@ -38,8 +44,8 @@ int main(int argc, char** argv) {
     graftal::cli::InputOptions in;
     std::string memoryLimit;
     graftal::cli::RenderCommandOptions out;
-    bool noGeometry = false, homomorphism = false;
-    std::string size, background, color;
+    bool noGeometry = false, homomorphism = false, predict = false;
+    std::string size, background, color, viewpoint, target, up, light;
 
     auto* derive = app.add_subcommand("derive", "print the derived module string");
     addInputOptions(*derive, in, memoryLimit);
@@ -48,6 +54,8 @@ int main(int argc, char** argv) {
     auto* stats = app.add_subcommand("stats", "print counts and bounds as JSON");
     addInputOptions(*stats, in, memoryLimit);
     stats->add_flag("--no-geometry", noGeometry, "derive and count only, no turtle");
+    stats->add_flag("--predict", predict,
+                    "module counts per step from the productions, without deriving");
 
     auto* render = app.add_subcommand("render", "draw the L-system to .svg, .png or .pdf");
     addInputOptions(*render, in, memoryLimit);
@@ -59,6 +67,17 @@ int main(int argc, char** argv) {
     render->add_option("--color", color, "line colour, #rrggbb (default: the palette)");
     render->add_option("--margin", out.render.margin, "margin, fraction of the picture")
         ->check(CLI::Range(0.0, 0.45));
+    render->add_option("--view", out.view, "draw a 3D model as 2D line art: front, back, side, top");
+    render->add_option("--viewpoint", viewpoint, "3D camera position x,y,z (default: framed)");
+    render->add_option("--target", target, "3D point the camera looks at, x,y,z");
+    render->add_option("--up", up, "3D camera up vector x,y,z (default 0,1,0)");
+    render->add_option("--fov", out.fieldOfView, "3D vertical field of view, degrees")
+        ->check(CLI::Range(1.0, 179.0));
+    render->add_option("--light", light, "3D direction towards the sun, x,y,z");
+    render->add_option("--spp", out.samplesPerPixel, "3D samples per pixel (antialiasing)")
+        ->check(CLI::Range(1, 1024));
+    render->add_option("--tube-sides", out.tubeSides, "3D cylinder cross-section vertices")
+        ->check(CLI::Range(3, 64));
 
     try {
         app.parse(argc, argv);
@@ -71,9 +90,14 @@ int main(int argc, char** argv) {
     try {
         if (!memoryLimit.empty()) in.memoryLimit = graftal::cli::parseByteSize(memoryLimit);
         if (*derive) return graftal::cli::runDerive(in, homomorphism);
-        if (*stats) return graftal::cli::runStats(in, !noGeometry);
+        if (*stats) return graftal::cli::runStats(in, !noGeometry, predict);
         if (!size.empty()) graftal::cli::parseImageSize(size, out.render.width, out.render.height);
         if (!background.empty()) out.render.background = graftal::cli::parseColor(background);
+        out.backgroundGiven = !background.empty();
+        if (!viewpoint.empty()) out.viewpoint = graftal::cli::parseVector("--viewpoint", viewpoint);
+        if (!target.empty()) out.target = graftal::cli::parseVector("--target", target);
+        if (!up.empty()) out.up = graftal::cli::parseVector("--up", up);
+        if (!light.empty()) out.light = graftal::cli::parseVector("--light", light);
         if (!color.empty()) out.render.lineColor = graftal::cli::parseColor(color);
         return graftal::cli::runRender(in, out);
     } catch (const graftal::Error& e) {

@@ -18,7 +18,7 @@ std::string describeByte(std::string_view text, std::size_t i) {
 }  // namespace
 
 bool tokenizeModules(std::string_view text, const SourceLocation& loc, int startColumn,
-                     const SymbolTable& symbols, std::vector<ModuleToken>& out,
+                     SymbolTable& symbols, std::vector<ModuleToken>& out,
                      DiagnosticList& diags) {
     auto where = [&](std::size_t i) {
         SourceLocation l = loc;
@@ -87,6 +87,16 @@ bool tokenizeModules(std::string_view text, const SourceLocation& loc, int start
         ModuleToken tok;
         tok.column = startColumn + static_cast<int>(i);
         std::size_t len = 1;
+        if (c == '~' && i + 1 < text.size() &&
+            (std::isalnum(static_cast<unsigned char>(text[i + 1])) || text[i + 1] == '_')) {
+            std::size_t e = i + 1;
+            while (e < text.size() && (std::isalnum(static_cast<unsigned char>(text[e])) || text[e] == '_'))
+                ++e;
+            tok.symbol = symbols.declare(text.substr(i, e - i));
+            out.push_back(std::move(tok));
+            i = e;
+            continue;
+        }
         if (std::isalpha(static_cast<unsigned char>(c)) || c == '_' || c == '?') {
             for (Symbol s : symbols.namesLongestFirst()) {
                 const std::string& n = symbols.name(s);

@@ -24,9 +24,10 @@ struct ModuleToken {
 };
 
 // `startColumn` is the column of text[0] on line `loc.line`. Returns false and reports
-// to `diags` when the text is malformed.
+// to `diags` when the text is malformed. `~name` (a predefined surface, as in cpfg) is one
+// module and is declared in `symbols` on first use.
 bool tokenizeModules(std::string_view text, const SourceLocation& loc, int startColumn,
-                     const SymbolTable& symbols, std::vector<ModuleToken>& out,
+                     SymbolTable& symbols, std::vector<ModuleToken>& out,
                      DiagnosticList& diags);
 
 }  // namespace graftal

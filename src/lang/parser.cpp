@@ -37,6 +37,10 @@ const std::vector<std::string> kKeywords = {
     "lsystem",         "derivation length", "axiom",       "ignore",  "consider",
     "angle factor",    "angle increment",   "scale factor", "initial heading", "seed",
     "step length",     "maximum depth",     "table",       "table schedule",  "environment",
+    "viewpoint",       "view reference point", "up vector", "projection",  "field of view",
+    "light direction", "background",        "line style",  "line width",  "width factor",
+    "tropism direction", "tropism elasticity", "initial elasticity", "elasticity",
+    "color map",       "colour map",        "surface",
 };
 
 
@@ -386,6 +390,8 @@ void Parser::parseDirective(const SourceLine& line, const std::string& kw, std::
         ls_.environment.push_back({std::string(trimView(value)), loc});
     } else if (kw == "table schedule") {
         parseSchedule(line, valueStart);
+    } else if (parseViewSetting(line, kw, valueStart)) {
+        return;
     } else if (kw == "seed") {
         if (!constantValue(line, valueStart, v)) return;
         if (v < 0 || v != std::floor(v)) {

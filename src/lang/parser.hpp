@@ -70,6 +70,10 @@ private:
 
     void parseIgnore(const SourceLine& line, const std::string& kw, std::size_t valueStart);
 
+    // View settings for 3D pictures (view_parser.cpp).
+    bool parseViewSetting(const SourceLine& line, const std::string& kw, std::size_t valueStart);
+    bool vectorValue(const SourceLine& line, std::size_t from, Vec3& out);
+
     // ---- productions -----------------------------------------------------------------
 
     bool parsePatterns(const SourceLine& line, std::size_t from, std::size_t to,

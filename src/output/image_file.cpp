@@ -80,6 +80,12 @@ void writeImage(const Scene& scene, const RenderOptions& o, const fs::path& path
                                            : "unknown image file extension '" + ext + "'") +
                                   "; use .svg, .png or .pdf");
     }
+    writeFileAtomically(path, [&](const fs::path& temporary) {
+        writeByFormat(*format, scene, o, temporary);
+    });
+}
+
+void writeFileAtomically(const fs::path& path, const std::function<void(const fs::path&)>& write) {
     const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
     std::error_code ec;
     if (!fs::is_directory(dir, ec))
@@ -89,7 +95,7 @@ void writeImage(const Scene& scene, const RenderOptions& o, const fs::path& path
 
     const fs::path temporary = temporaryPathFor(path);
     try {
-        writeByFormat(*format, scene, o, temporary);
+        write(temporary);
         fs::rename(temporary, path, ec);
         if (ec) throw fileError(path, "cannot write image: " + ec.message());
     } catch (const Error& e) {

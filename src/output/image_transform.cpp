@@ -69,18 +69,24 @@ ImageTransform ImageTransform::fit(const Bounds& b, const RenderOptions& o) {
 // solid blob at that width, so when total line length x width would ink more than
 // kMaxInkCoverage of the drawing area the width shrinks in proportion, down to
 // kMinAutoLineWidth. Sparse pictures, which are most of them, keep the base width.
+double inkLength(const Segment& s, float baseWidth) {
+    const double len = std::hypot(s.b.x - s.a.x, s.b.y - s.a.y);
+    const double w = s.width > 0 && baseWidth > 0 ? s.width / baseWidth : 0;
+    return std::isfinite(len) ? len * w : 0;
+}
+
 double defaultLineWidth(const Scene& scene, const RenderOptions& o) {
+    double ink = 0;
+    for (const Segment& s : scene.segments) ink += inkLength(s, scene.baseWidth);
+    return defaultLineWidth(ink, !scene.segments.empty(), scene.bounds(), o);
+}
+
+double defaultLineWidth(double ink, bool anySegments, const Bounds& bounds, const RenderOptions& o) {
     if (o.lineWidth > 0) return o.lineWidth;
     const double base = std::clamp(std::min(o.width, o.height) / 600.0, 0.6, 2.0);
-    if (scene.segments.empty()) return base;
-
-    const ImageTransform t = ImageTransform::fit(scene.bounds(), o);
-    double inkLength = 0;  // sum of length x relative width, in pixels
-    for (const Segment& s : scene.segments) {
-        const double len = std::hypot(s.b.x - s.a.x, s.b.y - s.a.y) * t.scale;
-        const double w = s.width > 0 ? s.width : 0;
-        if (std::isfinite(len)) inkLength += len * w;
-    }
+    if (!anySegments) return base;
+    const ImageTransform t = ImageTransform::fit(bounds, o);
+    const double inkLength = ink * t.scale;  // sum of length x relative width, in pixels
     const Area area = drawingArea(o);
     const double coverage = inkLength * base / (area.width * area.height);
     if (!(coverage > kMaxInkCoverage)) return base;

@@ -294,10 +294,11 @@ double RewritingEngine::evaluate(const Expression& e, const double* slots, Draws
     return e.evaluate(vars, &ctx);
 }
 
-std::int32_t RewritingEngine::choose(const ModuleString& s, std::size_t i, int stepNumber,
-                                     int table, double* slots, std::vector<double>& weights) const {
+std::int32_t RewritingEngine::choose(const ModuleString& s, std::size_t i, std::uint64_t position,
+                                     int stepNumber, int table, double* slots,
+                                     std::vector<double>& weights) const {
     const auto& cands = candidates_[static_cast<std::size_t>(table)][s.symbol(i)];
-    Draws draws{this, static_cast<std::uint64_t>(stepNumber), i, 0};
+    Draws draws{this, static_cast<std::uint64_t>(stepNumber), position, 0};
     for (std::size_t k = 0; k < cands.size(); ++k) {
         const Production& p = productions_[cands[k]];
         if (!matches(p, s, i, slots)) continue;
@@ -319,7 +320,7 @@ std::int32_t RewritingEngine::choose(const ModuleString& s, std::size_t i, int s
             }
         }
         if (sum <= 0) return kIdentity;
-        double u = uniformAt(seed_, static_cast<std::uint64_t>(stepNumber), i, 1u << 20) * sum;
+        double u = uniformAt(seed_, static_cast<std::uint64_t>(stepNumber), position, 1u << 20) * sum;
         std::size_t last = k;
         for (std::size_t r = k; r < cands.size(); ++r) {
             if (weights[r] <= 0) continue;
@@ -330,6 +331,47 @@ std::int32_t RewritingEngine::choose(const ModuleString& s, std::size_t i, int s
         return static_cast<std::int32_t>(cands[last]);  // rounding left u at the top end
     }
     return kIdentity;
+}
+
+bool RewritingEngine::rewrites(Symbol s) const {
+    for (const auto& t : candidates_)
+        if (s < t.size() && !t[s].empty()) return true;
+    return false;
+}
+
+void RewritingEngine::expandOne(const ModuleString& s, std::size_t i, std::uint64_t position,
+                                int stepNumber, int table, ModuleString& out) {
+    table = std::clamp(table, 0, static_cast<int>(tableCount_) - 1);
+    scratchSlots_.resize(static_cast<std::size_t>(maxSlots_));
+    std::int32_t k;
+    try {
+        k = choose(s, i, position, stepNumber, table, scratchSlots_.data(), scratchWeights_);
+    } catch (const Error& err) {
+        rethrowAt(err, s, i, stepNumber);
+    }
+    if (k == kIdentity) {
+        out.push(s.symbol(i), s.params(i));
+        return;
+    }
+    const Production& p = productions_[static_cast<std::size_t>(k)];
+    if (!parametric_) {
+        for (const auto& m : p.successor) out.push(m.symbol);
+        return;
+    }
+    matches(p, s, i, scratchSlots_.data());
+    Draws draws{this, static_cast<std::uint64_t>(stepNumber), position, 1ull << 32};
+    double args[64];
+    for (const auto& m : p.successor) {
+        std::size_t n = std::min<std::size_t>(m.args.size(), 64);
+        for (std::size_t a = 0; a < n; ++a) {
+            try {
+                args[a] = evaluate(m.args[a], scratchSlots_.data(), draws);
+            } catch (const Error& err) {
+                rethrowAt(err, s, i, stepNumber);
+            }
+        }
+        out.push(m.symbol, std::span<const double>(args, n));
+    }
 }
 
 // ---- generic path -----------------------------------------------------------------------
@@ -353,7 +395,7 @@ bool RewritingEngine::stepGeneric(const ModuleString& cur, ModuleString& next, i
             std::int32_t k = kIdentity;
             if (!activeIn || (*activeIn)[i]) {
                 try {
-                    k = choose(cur, i, stepNumber, table, slots.data(), weights);
+                    k = choose(cur, i, i, stepNumber, table, slots.data(), weights);
                 } catch (const Error& err) {
                     rethrowAt(err, cur, i, stepNumber);
                 }

@@ -26,6 +26,16 @@ public:
               std::vector<std::uint8_t>* activeOut = nullptr);
 
     bool parametric() const { return parametric_; }
+    bool usesContext() const { return needBrackets_ || multiPred_; }
+    // True when some symbol has a production in some table (false: identity for ever).
+    bool rewrites(Symbol s) const;
+
+    // Appends to `out` the successor of module i of `s` (or the module itself when no
+    // production applies), choosing as a derivation step would for the module at
+    // `position` of its string: the depth-first streamed derivation uses this.
+    // Context-free productions only.
+    void expandOne(const ModuleString& s, std::size_t i, std::uint64_t position, int stepNumber,
+                   int table, ModuleString& out);
 
 private:
     struct Draws;
@@ -34,8 +44,9 @@ private:
     bool stepGeneric(const ModuleString& cur, ModuleString& next, int stepNumber, int table,
                      std::size_t limit, const std::vector<std::uint8_t>* activeIn,
                      std::vector<std::uint8_t>* activeOut);
-    std::int32_t choose(const ModuleString& s, std::size_t i, int stepNumber, int table,
-                        double* slots, std::vector<double>& weights) const;
+    std::int32_t choose(const ModuleString& s, std::size_t i, std::uint64_t position,
+                        int stepNumber, int table, double* slots,
+                        std::vector<double>& weights) const;
     bool matches(const Production& p, const ModuleString& s, std::size_t i, double* slots) const;
     bool matchLeft(const Production& p, const ModuleString& s, std::size_t i, double* slots,
                    int& slot) const;
@@ -67,6 +78,7 @@ private:
     std::vector<std::vector<Symbol>> fastSymbols_;
 
     BracketIndex brackets_;
+    std::vector<double> scratchSlots_, scratchWeights_;
     std::vector<std::int32_t, UninitializedAllocator<std::int32_t>> choice_;
 };
 

@@ -1,0 +1,139 @@
+// graftal render: a picture (SVG, PNG, PDF) or a 3D file (OBJ, PLY, glTF binary).
+// 2D scenes become line art; 3D scenes become ray-traced PNGs and meshes, or line art
+// seen from a --view.
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
+#include "commands.hpp"
+#include "graftal/color_map.hpp"
+#include "graftal/derivation.hpp"
+#include "graftal/mesh.hpp"
+#include "graftal/projection.hpp"
+#include "graftal/render3d.hpp"
+#include "graftal/streaming.hpp"
+#include "graftal/surface.hpp"
+#include "graftal/turtle.hpp"
+
+namespace graftal::cli {
+
+namespace {
+
+enum class OutputKind { Picture, Obj, Ply, Glb };
+
+std::optional<OutputKind> outputKindFor(const std::filesystem::path& p) {
+    std::string ext = p.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (ext == ".obj") return OutputKind::Obj;
+    if (ext == ".ply") return OutputKind::Ply;
+    if (ext == ".glb") return OutputKind::Glb;
+    if (imageFormatFor(p)) return OutputKind::Picture;
+    return std::nullopt;
+}
+
+// Surfaces a file declares (`surface: l leaf.s 0.5`) are read relative to the file; a
+// name without a file on disk falls back to the built-in surfaces (leaf, petal).
+SurfaceLibrary surfacesFor(const LSystem& ls, const std::string& file) {
+    SurfaceLibrary lib = SurfaceLibrary::builtin();
+    std::filesystem::path dir = std::filesystem::path(file).parent_path();
+    for (const auto& decl : ls.view.surfaces) {
+        std::filesystem::path path = dir / decl.file;
+        Surface s;
+        if (std::filesystem::exists(path)) {
+            s = loadSurface(path);
+        } else if (const Surface* builtin = lib.find(std::filesystem::path(decl.file).stem().string())) {
+            s = *builtin;
+        } else {
+            throw Error(decl.location, "surface file '" + decl.file + "' not found (looked in " +
+                                           (dir.empty() ? std::string(".") : dir.string()) +
+                                           " and the built-in surfaces)");
+        }
+        s.name = decl.name;
+        s.size *= decl.scale;
+        lib.add(std::move(s));
+    }
+    return lib;
+}
+
+RaytraceOptions raytraceOptions(const LSystem& ls, const RenderCommandOptions& out) {
+    const ViewSettings& v = ls.view;
+    RaytraceOptions r;
+    r.width = out.render.width;
+    r.height = out.render.height;
+    r.samplesPerPixel = out.samplesPerPixel;
+    r.background = out.backgroundGiven ? out.render.background : v.background.value_or(out.render.background);
+    r.camera.viewpoint = out.viewpoint ? out.viewpoint : v.viewpoint;
+    r.camera.target = out.target ? out.target : v.viewReferencePoint;
+    if (auto up = out.up ? out.up : v.upVector) r.camera.up = *up;
+    if (auto fov = out.fieldOfView ? out.fieldOfView : v.fieldOfView) r.camera.fieldOfView = *fov;
+    r.camera.orthographic = v.parallelProjection;
+    if (auto light = out.light ? out.light : v.lightDirection) r.lighting.sunDirection = *light;
+    return r;
+}
+
+}  // namespace
+
+int runRender(const InputOptions& in, const RenderCommandOptions& out) {
+    auto kind = outputKindFor(out.output);
+    if (!kind)
+        throw Error(SourceLocation{"graftal", 0, 0},
+                    "-o " + out.output + ": unknown format (use .svg, .png, .pdf, .obj, .ply or .glb)");
+    std::optional<ViewDirection> view;
+    if (!out.view.empty()) {
+        view = viewDirectionFromName(out.view);
+        if (!view)
+            throw Error(SourceLocation{"graftal", 0, 0},
+                        "--view '" + out.view + "': expected front, back, side or top");
+        if (*kind != OutputKind::Picture)
+            throw Error(SourceLocation{"graftal", 0, 0}, "--view draws 2D line art; it applies "
+                                                         "to .svg, .png and .pdf, not 3D files");
+    }
+
+    {
+        // A 2D PNG can be drawn while the derivation streams; everything else needs the scene.
+        Loaded l = loadInput(in);
+        bool png2D = *kind == OutputKind::Picture && imageFormatFor(out.output) == ImageFormat::Png;
+        if (chooseStreaming(l, in, png2D)) {
+            RenderOptions render = out.render;
+            double fill = std::clamp(l.lsystem.view.scaleFactor / 100.0, 0.01, 1.0);
+            render.margin = 0.5 - (0.5 - render.margin) * fill;
+            renderStreamedPng(l.lsystem, l.steps, derivationOptions(in), render, out.output);
+            return 0;
+        }
+    }
+    Derived d = loadAndDerive(in);
+    Scene scene = interpret(d.lsystem, applyHomomorphism(d.lsystem, d.modules, derivationOptions(in)));
+    if (!d.lsystem.view.colorMap.empty()) {
+        std::filesystem::path map = std::filesystem::path(in.file).parent_path() / d.lsystem.view.colorMap;
+        scene.palette = loadColorMap(map);
+    }
+
+    bool threeD = scene.is3D && !view;
+    if (*kind == OutputKind::Picture && !(threeD && imageFormatFor(out.output) == ImageFormat::Png)) {
+        // Line art: 2D scenes as they are, 3D scenes seen from the front unless told.
+        if (scene.is3D) scene = projectScene(scene, view.value_or(ViewDirection::Front));
+        RenderOptions render = out.render;
+        // pfg's scale factor: the picture fills that share of the frame (100 = all of it).
+        double fill = std::clamp(d.lsystem.view.scaleFactor / 100.0, 0.01, 1.0);
+        render.margin = 0.5 - (0.5 - render.margin) * fill;
+        if (!out.backgroundGiven && d.lsystem.view.background) render.background = *d.lsystem.view.background;
+        writeImage(scene, render, out.output);
+        return 0;
+    }
+
+    SurfaceLibrary surfaces = surfacesFor(d.lsystem, in.file);
+    MeshOptions mo;
+    mo.tubeSides = out.tubeSides;
+    mo.cylinders = d.lsystem.view.lineStyle == LineStyle::Cylinders;
+    Mesh mesh = buildMesh(scene, mo, &surfaces);
+    switch (*kind) {
+        case OutputKind::Obj: writeObj(mesh, out.output); break;
+        case OutputKind::Ply: writePly(mesh, out.output); break;
+        case OutputKind::Glb: writeGlb(mesh, out.output); break;
+        case OutputKind::Picture: renderRaytraced(mesh, raytraceOptions(d.lsystem, out), out.output); break;
+    }
+    return 0;
+}
+
+}  // namespace graftal::cli

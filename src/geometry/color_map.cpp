@@ -1,0 +1,114 @@
+// Reading and writing cpfg's binary colour maps. cpfg reads 256 entries of three bytes
+// (fread(entry, 3, 1, fp) per colour) and sets no header; it does not check the size, so a
+// short file silently leaves colours undefined. Here any size but 768 bytes is an error.
+#include "graftal/color_map.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <system_error>
+
+#include "graftal/diagnostics.hpp"
+
+namespace graftal {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+Error mapError(const std::string& file, const std::string& message) {
+    return Error(SourceLocation{file, 0, 0}, message);
+}
+
+std::uint8_t toByte(float v) {
+    // NaN compares false both ways and would reach lround; treat it as 0.
+    float c = std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f);
+    return static_cast<std::uint8_t>(std::lround(c * 255.0f));
+}
+
+}  // namespace
+
+std::vector<Rgb> parseColorMap(std::span<const std::uint8_t> bytes, const std::string& fileName) {
+    if (bytes.size() != kColorMapBytes)
+        throw mapError(fileName, "not a colour map: it has " + std::to_string(bytes.size()) +
+                                     " bytes, expected exactly " + std::to_string(kColorMapBytes) +
+                                     " (256 colours of 3 bytes: red, green, blue)");
+    std::vector<Rgb> colors(kColorMapEntries);
+    for (std::size_t i = 0; i < kColorMapEntries; ++i)
+        colors[i] = {static_cast<float>(bytes[3 * i]) / 255.0f,
+                     static_cast<float>(bytes[3 * i + 1]) / 255.0f,
+                     static_cast<float>(bytes[3 * i + 2]) / 255.0f};
+    return colors;
+}
+
+std::vector<Rgb> loadColorMap(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+        throw mapError(path.string(),
+                       std::string("cannot open colour map: ") + std::strerror(errno));
+    // Read one byte past the expected size so that an oversized file is caught without
+    // reading all of whatever it is.
+    std::vector<std::uint8_t> bytes(kColorMapBytes + 1);
+    in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+    if (in.bad()) throw mapError(path.string(), "cannot read colour map");
+    bytes.resize(static_cast<std::size_t>(in.gcount()));
+    if (bytes.size() > kColorMapBytes)
+        throw mapError(path.string(),
+                       "not a colour map: it has more than " + std::to_string(kColorMapBytes) +
+                           " bytes, expected exactly " + std::to_string(kColorMapBytes) +
+                           " (256 colours of 3 bytes: red, green, blue)");
+    return parseColorMap(bytes, path.string());
+}
+
+std::vector<std::uint8_t> encodeColorMap(std::span<const Rgb> colors) {
+    if (colors.size() > kColorMapEntries)
+        throw mapError(
+            "", "a colour map holds at most 256 colours, got " + std::to_string(colors.size()));
+    std::vector<std::uint8_t> bytes(kColorMapBytes, 0);
+    for (std::size_t i = 0; i < colors.size(); ++i) {
+        bytes[3 * i] = toByte(colors[i].r);
+        bytes[3 * i + 1] = toByte(colors[i].g);
+        bytes[3 * i + 2] = toByte(colors[i].b);
+    }
+    return bytes;
+}
+
+void saveColorMap(const std::filesystem::path& path, std::span<const Rgb> colors) {
+    std::vector<std::uint8_t> bytes = encodeColorMap(colors);
+    // A hidden temporary in the same directory (rename is atomic only within one file
+    // system), unique per process and call, renamed over the target once complete.
+    static std::atomic<unsigned> counter{0};
+    std::string tmpName = ".";
+    tmpName += path.filename().string();
+    tmpName += ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+    fs::path tmp = path.parent_path() / tmpName;
+    {
+        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+        if (!out)
+            throw mapError(path.string(),
+                           std::string("cannot create colour map: ") + std::strerror(errno));
+        out.write(reinterpret_cast<const char*>(bytes.data()),
+                  static_cast<std::streamsize>(bytes.size()));
+        out.close();
+        if (!out) {
+            std::error_code ignored;
+            fs::remove(tmp, ignored);
+            throw mapError(path.string(), "cannot write colour map: write failed (disk full?)");
+        }
+    }
+    std::error_code ec;
+    fs::rename(tmp, path, ec);
+    if (ec) {
+        std::error_code ignored;
+        fs::remove(tmp, ignored);
+        throw mapError(path.string(), "cannot write colour map: " + ec.message());
+    }
+}
+
+}  // namespace graftal

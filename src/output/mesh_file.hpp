@@ -1,0 +1,180 @@
+// What the 3D writers (OBJ, PLY, glTF) share: writing a file atomically, checking the mesh
+// they are given, and the mesh's triangles grouped into one material per colour.
+#pragma once
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include "graftal/diagnostics.hpp"
+#include "graftal/mesh.hpp"
+
+namespace graftal::mesh_file {
+
+inline Error fileError(const std::filesystem::path& path, const std::string& message) {
+    return Error(SourceLocation{path.string(), 0, 0}, message);
+}
+
+// A file that appears under its name only when complete: it is written to a hidden
+// temporary beside the target (rename is atomic only within one file system) and renamed
+// over the target by commit(). Destroyed uncommitted, after an error, it leaves nothing.
+class AtomicFile {
+public:
+    // `format` names the kind of file in messages ("OBJ").
+    AtomicFile(std::filesystem::path target, std::string format)
+        : target_(std::move(target)), format_(std::move(format)) {
+        namespace fs = std::filesystem;
+        const fs::path dir = target_.parent_path().empty() ? fs::path(".") : target_.parent_path();
+        std::error_code ec;
+        if (!fs::is_directory(dir, ec))
+            throw fileError(
+                target_, "cannot write " + format_ + ": '" + dir.string() +
+                             (fs::exists(dir, ec) ? "' is not a directory" : "' does not exist"));
+        static std::atomic<unsigned> counter{0};
+        // Built piece by piece: GCC 12 warns falsely (-Wrestrict) about "." + std::string.
+        std::string name = ".";
+        name += target_.filename().string();
+        name += ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+        temporary_ = dir / name;
+        out_.open(temporary_, std::ios::binary | std::ios::trunc);
+        if (!out_)
+            throw fileError(target_, "cannot write " + format_ + ": cannot create a file in '" +
+                                         dir.string() + "': " + std::strerror(errno));
+    }
+    AtomicFile(const AtomicFile&) = delete;
+    AtomicFile& operator=(const AtomicFile&) = delete;
+    ~AtomicFile() {
+        if (committed_) return;
+        out_.close();
+        std::error_code ec;
+        std::filesystem::remove(temporary_, ec);
+    }
+
+    std::ostream& stream() { return out_; }
+    void write(const void* data, std::size_t size) {
+        out_.write(static_cast<const char*>(data), static_cast<std::streamsize>(size));
+    }
+
+    void commit() {
+        out_.close();
+        if (!out_)
+            throw fileError(target_, "cannot write " + format_ + ": write failed (disk full?)");
+        std::error_code ec;
+        std::filesystem::rename(temporary_, target_, ec);
+        if (ec) throw fileError(target_, "cannot write " + format_ + ": " + ec.message());
+        committed_ = true;
+    }
+
+private:
+    std::filesystem::path target_, temporary_;
+    std::string format_;
+    std::ofstream out_;
+    bool committed_ = false;
+};
+
+// Writers index arrays without further checks, so a malformed mesh is refused up front.
+inline void checkMesh(const Mesh& mesh, const std::filesystem::path& path,
+                      const std::string& format) {
+    auto bad = [&](const std::string& what) {
+        return fileError(path, "cannot write " + format + ": invalid mesh: " + what);
+    };
+    if (mesh.normals.size() != mesh.positions.size())
+        throw bad("it has " + std::to_string(mesh.normals.size()) + " normals for " +
+                  std::to_string(mesh.positions.size()) + " vertices");
+    if (mesh.indices.size() != 3 * mesh.triangleColor.size())
+        throw bad("it has " + std::to_string(mesh.indices.size()) + " indices for " +
+                  std::to_string(mesh.triangleColor.size()) + " triangles");
+    for (std::uint32_t i : mesh.indices)
+        if (i >= mesh.positions.size())
+            throw bad("vertex index " + std::to_string(i) + " is out of range");
+}
+
+// Colour indices past the end of the palette wrap around, as Scene::colorOf does.
+inline std::uint16_t paletteIndex(const Mesh& mesh, std::uint16_t color) {
+    return mesh.palette.empty() ? color : static_cast<std::uint16_t>(color % mesh.palette.size());
+}
+inline Rgb paletteColor(const Mesh& mesh, std::uint16_t color) {
+    return mesh.palette.empty() ? Rgb{0.5f, 0.5f, 0.5f} : mesh.palette[paletteIndex(mesh, color)];
+}
+inline std::string materialName(std::uint16_t paletteIndex) {
+    return "color" + std::to_string(paletteIndex);
+}
+inline std::array<std::uint8_t, 3> colorBytes(const Rgb& c) {
+    auto byte = [](float v) {
+        return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255));
+    };
+    return {byte(c.r), byte(c.g), byte(c.b)};
+}
+
+// The triangles of one palette entry: one material in OBJ and glTF.
+struct ColorGroup {
+    std::uint16_t color = 0;               // palette index
+    std::vector<std::uint32_t> triangles;  // indices of the mesh's triangles, in mesh order
+};
+
+// In palette order; palette entries no triangle uses get no group.
+inline std::vector<ColorGroup> groupByColor(const Mesh& mesh) {
+    std::vector<std::uint32_t> count(std::numeric_limits<std::uint16_t>::max() + 1, 0);
+    for (std::uint16_t c : mesh.triangleColor) ++count[paletteIndex(mesh, c)];
+    std::vector<ColorGroup> groups;
+    std::vector<std::uint32_t> groupOf(count.size(), 0);
+    for (std::size_t c = 0; c < count.size(); ++c) {
+        if (count[c] == 0) continue;
+        groupOf[c] = static_cast<std::uint32_t>(groups.size());
+        groups.push_back({static_cast<std::uint16_t>(c), {}});
+        groups.back().triangles.reserve(count[c]);
+    }
+    for (std::uint32_t t = 0; t < mesh.triangleColor.size(); ++t)
+        groups[groupOf[paletteIndex(mesh, mesh.triangleColor[t])]].triangles.push_back(t);
+    return groups;
+}
+
+// A colour group with vertices of its own, for formats whose vertices carry the colour
+// (PLY) or whose primitives are indexed separately (glTF): a vertex shared by two colours
+// becomes one vertex in each.
+struct GroupVertices {
+    std::vector<std::uint32_t> vertices;  // the mesh vertex of each group vertex
+    std::vector<std::uint32_t> indices;   // into `vertices`, 3 per triangle
+};
+
+class VertexSplitter {
+public:
+    explicit VertexSplitter(const Mesh& mesh) : mesh_(mesh), local_(mesh.positions.size(), kNone) {}
+
+    GroupVertices split(const ColorGroup& group) {
+        GroupVertices out;
+        out.indices.reserve(3 * group.triangles.size());
+        for (std::uint32_t t : group.triangles) {
+            for (int k = 0; k < 3; ++k) {
+                const std::uint32_t v = mesh_.indices[3 * static_cast<std::size_t>(t) + k];
+                if (local_[v] == kNone) {
+                    local_[v] = static_cast<std::uint32_t>(out.vertices.size());
+                    out.vertices.push_back(v);
+                }
+                out.indices.push_back(local_[v]);
+            }
+        }
+        // Reset only what this group touched, so that splitting stays linear in the mesh.
+        for (std::uint32_t v : out.vertices) local_[v] = kNone;
+        return out;
+    }
+
+private:
+    static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+    const Mesh& mesh_;
+    std::vector<std::uint32_t> local_;
+};
+
+}  // namespace graftal::mesh_file

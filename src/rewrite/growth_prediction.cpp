@@ -1,0 +1,191 @@
+// Module counts from the production matrix M (M[s][t] = how many t a successor of s holds):
+// the count vector of step k+1 is the count vector of step k times M.
+#include "graftal/growth.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace graftal {
+
+namespace {
+constexpr std::uint32_t kBase = 1000000000u;
+}
+
+BigCount::BigCount(std::uint64_t v) {
+    while (v) {
+        limbs_.push_back(static_cast<std::uint32_t>(v % kBase));
+        v /= kBase;
+    }
+}
+
+BigCount& BigCount::operator+=(const BigCount& o) {
+    if (limbs_.size() < o.limbs_.size()) limbs_.resize(o.limbs_.size(), 0);
+    std::uint64_t carry = 0;
+    for (std::size_t i = 0; i < limbs_.size(); ++i) {
+        std::uint64_t s = carry + limbs_[i] + (i < o.limbs_.size() ? o.limbs_[i] : 0);
+        limbs_[i] = static_cast<std::uint32_t>(s % kBase);
+        carry = s / kBase;
+    }
+    if (carry) limbs_.push_back(static_cast<std::uint32_t>(carry));
+    return *this;
+}
+
+BigCount BigCount::times(std::uint64_t k) const {
+    BigCount r;
+    if (k == 0 || limbs_.empty()) return r;
+    // k may exceed one limb: multiply by its base-10^9 digits and shift.
+    BigCount factor(k);
+    r.limbs_.assign(limbs_.size() + factor.limbs_.size() + 1, 0);
+    for (std::size_t j = 0; j < factor.limbs_.size(); ++j) {
+        std::uint64_t carry = 0;
+        for (std::size_t i = 0; i < limbs_.size() || carry; ++i) {
+            std::uint64_t cur = r.limbs_[i + j] + carry +
+                                (i < limbs_.size() ? std::uint64_t(limbs_[i]) * factor.limbs_[j] : 0);
+            r.limbs_[i + j] = static_cast<std::uint32_t>(cur % kBase);
+            carry = cur / kBase;
+        }
+    }
+    while (!r.limbs_.empty() && r.limbs_.back() == 0) r.limbs_.pop_back();
+    return r;
+}
+
+bool operator<(const BigCount& a, const BigCount& b) {
+    if (a.limbs_.size() != b.limbs_.size()) return a.limbs_.size() < b.limbs_.size();
+    for (std::size_t i = a.limbs_.size(); i-- > 0;)
+        if (a.limbs_[i] != b.limbs_[i]) return a.limbs_[i] < b.limbs_[i];
+    return false;
+}
+
+std::string BigCount::toString() const {
+    if (limbs_.empty()) return "0";
+    std::string s = std::to_string(limbs_.back());
+    char buf[16];
+    for (std::size_t i = limbs_.size() - 1; i-- > 0;) {
+        std::snprintf(buf, sizeof buf, "%09u", limbs_[i]);
+        s += buf;
+    }
+    return s;
+}
+
+double BigCount::toDouble() const {
+    double v = 0;
+    for (std::size_t i = limbs_.size(); i-- > 0;) v = v * kBase + limbs_[i];
+    return v;
+}
+
+std::optional<std::uint64_t> BigCount::toUint64() const {
+    if (limbs_.size() > 3) return std::nullopt;
+    unsigned __int128 v = 0;
+    for (std::size_t i = limbs_.size(); i-- > 0;) v = v * kBase + limbs_[i];
+    if (v > ~std::uint64_t(0)) return std::nullopt;
+    return static_cast<std::uint64_t>(v);
+}
+
+namespace {
+
+// Why a string's growth cannot be read off its productions alone; empty when it can.
+std::string unpredictable(const LSystem& ls) {
+    if (ls.hasContext()) return "context-sensitive productions make counts depend on the string";
+    if (ls.hasMultiModulePredecessor()) return "multi-module predecessors make counts depend on the string";
+    if (!ls.decomposition.empty()) return "decomposition is not part of the prediction";
+    if (ls.usesCut()) return "the cut symbol % makes counts depend on the string";
+    if (!ls.environment.empty()) return "an environment makes counts depend on the simulation";
+    for (const auto& p : ls.productions) {
+        if (p.condition) return "conditions make counts depend on parameter values";
+        if (p.probability && !p.probability->isConstant())
+            return "probabilities that are expressions make counts depend on parameter values";
+    }
+    return {};
+}
+
+}  // namespace
+
+GrowthPrediction predictGrowth(const LSystem& ls, int steps) {
+    GrowthPrediction g;
+    g.reason = unpredictable(ls);
+    if (!g.reason.empty()) return g;
+    std::size_t n = ls.symbols.size();
+    bool stochastic = false;
+    for (const auto& p : ls.productions) stochastic |= p.probability.has_value();
+
+    std::size_t tables = std::max<std::size_t>(1, ls.tableNames.size());
+    // Per table, per predecessor symbol: (successor symbol counts, weight) of each choice.
+    struct Choice {
+        std::vector<std::pair<Symbol, std::uint64_t>> counts;
+        double weight = 1;
+    };
+    std::vector<std::vector<std::vector<Choice>>> choices(tables, std::vector<std::vector<Choice>>(n));
+    for (std::size_t t = 0; t < tables; ++t) {
+        for (const auto& p : ls.productions) {
+            if (p.table >= 0 && static_cast<std::size_t>(p.table) != t) continue;
+            auto& list = choices[t][p.predecessor[0].symbol];
+            // Deterministic: the first production wins, later ones never apply.
+            if (!p.probability && !list.empty()) continue;
+            if (p.probability && !list.empty() && list.front().weight < 0) continue;
+            Choice c;
+            std::vector<std::uint64_t> hist(n, 0);
+            for (const auto& m : p.successor) ++hist[m.symbol];
+            for (std::size_t s = 0; s < n; ++s)
+                if (hist[s]) c.counts.push_back({static_cast<Symbol>(s), hist[s]});
+            c.weight = p.probability ? p.probability->evaluate({}) : -1;  // -1: deterministic
+            list.push_back(std::move(c));
+        }
+    }
+
+    std::vector<BigCount> exact(n);
+    std::vector<double> expect(n, 0);
+    for (Symbol s : ls.axiom.symbols()) {
+        exact[s] += BigCount(1);
+        expect[s] += 1;
+    }
+    auto total = [&] {
+        BigCount sum;
+        double e = 0;
+        for (std::size_t s = 0; s < n; ++s) {
+            sum += exact[s];
+            e += expect[s];
+        }
+        g.modules.push_back(sum);
+        g.expectedModules.push_back(e);
+    };
+    total();
+    for (int step = 1; step <= steps; ++step) {
+        const auto& table = choices[static_cast<std::size_t>(ls.tableForStep(step))];
+        std::vector<BigCount> nextExact(n);
+        std::vector<double> nextExpect(n, 0);
+        for (std::size_t s = 0; s < n; ++s) {
+            if (expect[s] == 0) continue;
+            const auto& list = table[s];
+            if (list.empty()) {  // identity
+                nextExact[s] += exact[s];
+                nextExpect[s] += expect[s];
+                continue;
+            }
+            double sum = 0;
+            for (const auto& c : list) sum += std::max(c.weight, 0.0);
+            bool deterministic = list.front().weight < 0;
+            if (!deterministic && sum <= 0) {  // nothing can be chosen: identity
+                nextExpect[s] += expect[s];
+                continue;
+            }
+            for (const auto& c : list) {
+                double share = deterministic ? 1.0 : std::max(c.weight, 0.0) / sum;
+                for (auto [t, k] : c.counts) {
+                    nextExpect[t] += expect[s] * share * static_cast<double>(k);
+                    if (!stochastic) nextExact[t] += exact[s].times(k);
+                }
+                if (deterministic) break;
+            }
+        }
+        exact = std::move(nextExact);
+        expect = std::move(nextExpect);
+        total();
+    }
+    g.exact = !stochastic;
+    g.expected = stochastic;
+    if (stochastic) g.modules.clear();
+    else g.symbolsAtEnd = exact;
+    return g;
+}
+
+}  // namespace graftal

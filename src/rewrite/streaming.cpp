@@ -1,0 +1,76 @@
+// Depth-first expansion. Level k holds the successor being expanded of one module of
+// string k-1; only one such successor per level is alive at a time, so memory is
+// O(depth × successor length). Visiting level k in depth-first order meets the modules
+// of string k from left to right, so each module's position in its string is a running
+// counter per level, and the counter-based random stream gives the materialised choices.
+#include "graftal/streaming.hpp"
+
+#include "parallel.hpp"
+#include "rewriting_engine.hpp"
+
+namespace graftal {
+
+std::string streamingObstacle(const LSystem& ls) {
+    if (ls.hasContext()) return "its productions have context";
+    if (ls.hasMultiModulePredecessor()) return "it has multi-module predecessors";
+    if (!ls.decomposition.empty()) return "it has a decomposition section";
+    if (!ls.homomorphism.empty()) return "it has a homomorphism section";
+    if (ls.usesCut()) return "it uses the cut symbol %";
+    if (!ls.environment.empty()) return "it talks to an environment";
+    for (Symbol s : ls.axiom.symbols())
+        if (s >= kQueryE && s <= kQueryU) return "it has query modules";
+    for (const auto& p : ls.productions)
+        for (const auto& m : p.successor)
+            if (m.symbol >= kQueryE && m.symbol <= kQueryU) return "it has query modules";
+    return {};
+}
+
+void streamDerivation(const LSystem& ls, int steps, ModuleSink& sink,
+                      const DerivationOptions& options) {
+    if (std::string why = streamingObstacle(ls); !why.empty())
+        throw Error(SourceLocation{ls.file, 0, 0}, "this L-system cannot be streamed: " + why);
+    if (steps < 0) steps = ls.derivationLength;
+    RewritingEngine engine(ls, ls.productions, options.seed.value_or(ls.seed), 1);
+    bool random = false;
+    for (const auto& p : ls.productions) {
+        random |= p.probability.has_value();
+        for (const auto& m : p.successor)
+            for (const auto& a : m.args) random |= a.usesRandom();
+        if (p.condition) random |= p.condition->usesRandom();
+    }
+    // A symbol no table ever rewrites goes straight to the sink; only random choices need
+    // the positions it would have taken in the deeper strings.
+    std::vector<bool> fixed(ls.symbols.size());
+    for (std::size_t s = 0; s < fixed.size(); ++s) fixed[s] = !engine.rewrites(static_cast<Symbol>(s));
+
+    std::vector<ModuleString> level(static_cast<std::size_t>(steps) + 1);
+    std::vector<std::size_t> cursor(level.size(), 0);
+    std::vector<std::uint64_t> position(level.size(), 0);
+    level[0] = ls.axiom;
+    std::size_t d = 0;
+    while (true) {
+        if (cursor[d] == level[d].size()) {
+            if (d == 0) break;
+            --d;
+            continue;
+        }
+        std::size_t i = cursor[d]++;
+        const ModuleString& here = level[d];
+        Symbol s = here.symbol(i);
+        if (d == static_cast<std::size_t>(steps) || fixed[s]) {
+            sink.module(s, here.params(i));
+            if (random)
+                for (std::size_t k = d; k < level.size(); ++k) ++position[k];
+            continue;
+        }
+        std::uint64_t pos = position[d]++;
+        ModuleString& next = level[d + 1];
+        next.clear();
+        engine.expandOne(here, i, pos, static_cast<int>(d) + 1, ls.tableForStep(static_cast<int>(d) + 1),
+                         next);
+        cursor[d + 1] = 0;
+        ++d;
+    }
+}
+
+}  // namespace graftal

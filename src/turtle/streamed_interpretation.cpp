@@ -1,0 +1,118 @@
+// The turtle fed by a streamed derivation: geometry for strings too large to hold.
+#include "graftal/streaming.hpp"
+#include "turtle_machine.hpp"
+
+namespace graftal {
+
+namespace {
+
+// Adapts the turtle to the module stream.
+template <class Sink>
+class TurtleStream : public ModuleSink {
+public:
+    TurtleStream(const LSystem& ls, Sink& sink, StreamedMeasure* measure)
+        : machine_(ls, sink), measure_(measure) {}
+    void module(Symbol s, std::span<const double> params) override {
+        if (measure_) {
+            ++measure_->modules;
+            ++measure_->symbolCounts[s];
+        }
+        machine_.module(s, params, index_++);
+    }
+    void finish() { machine_.finish(); }
+
+private:
+    turtle::TurtleMachine<Sink> machine_;
+    StreamedMeasure* measure_;
+    std::size_t index_ = 0;
+};
+
+class MeasureSink {
+public:
+    explicit MeasureSink(StreamedMeasure& m) : m_(m) {}
+    std::uint32_t segment(const Segment& s) {
+        m_.bounds.extend(s.a);
+        m_.bounds.extend(s.b);
+        m_.ink += inkLength(s, m_.baseWidth);
+        return static_cast<std::uint32_t>(m_.segments++);
+    }
+    void polygon(std::span<const Vec3> v, std::uint16_t) {
+        for (const auto& p : v) m_.bounds.extend(p);
+        ++m_.polygons;
+    }
+    void surface(const std::string&, const SurfaceInstance&) {}
+    void baseWidth(float w) { m_.baseWidth = w; }
+    void finish(bool is3D) { m_.is3D = is3D; }
+
+private:
+    StreamedMeasure& m_;
+};
+
+class CountingSink : public ModuleSink {
+public:
+    explicit CountingSink(StreamedMeasure& m) : m_(m) {}
+    void module(Symbol s, std::span<const double>) override {
+        ++m_.modules;
+        ++m_.symbolCounts[s];
+    }
+
+private:
+    StreamedMeasure& m_;
+};
+
+class PictureSink {
+public:
+    explicit PictureSink(StreamedPng& png) : png_(png) {}
+    std::uint32_t segment(const Segment& s) {
+        png_.segment(s);
+        return kNoSegment;
+    }
+    void polygon(std::span<const Vec3> v, std::uint16_t c) { png_.polygon(v, c); }
+    void surface(const std::string&, const SurfaceInstance&) {}
+    void baseWidth(float) {}
+    void finish(bool) {}
+
+private:
+    StreamedPng& png_;
+};
+
+}  // namespace
+
+StreamedMeasure measureStreamed(const LSystem& ls, int steps, const DerivationOptions& options,
+                                bool geometry) {
+    StreamedMeasure m;
+    m.symbolCounts.assign(ls.symbols.size(), 0);
+    if (!geometry) {
+        CountingSink counter(m);
+        streamDerivation(ls, steps, counter, options);
+        return m;
+    }
+    MeasureSink sink(m);
+    TurtleStream<MeasureSink> stream(ls, sink, &m);
+    streamDerivation(ls, steps, stream, options);
+    stream.finish();
+    return m;
+}
+
+Scene interpretStreamed(const LSystem& ls, int steps, const DerivationOptions& options) {
+    Scene scene;
+    turtle::SceneSink sink(scene);
+    TurtleStream<turtle::SceneSink> stream(ls, sink, nullptr);
+    streamDerivation(ls, steps, stream, options);
+    stream.finish();
+    return scene;
+}
+
+void renderStreamedPng(const LSystem& ls, int steps, const DerivationOptions& options,
+                       const RenderOptions& render, const std::filesystem::path& path) {
+    StreamedMeasure m = measureStreamed(ls, steps, options, true);
+    StreamedPng png(render, m.bounds, m.ink, m.segments > 0, m.baseWidth, Scene::defaultPalette(),
+                    path);
+    PictureSink sink(png);
+    TurtleStream<PictureSink> stream(ls, sink, nullptr);
+    streamDerivation(ls, steps, stream, options);
+    stream.finish();
+    png.finish();
+}
+
+}  // namespace graftal

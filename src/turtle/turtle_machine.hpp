@@ -1,0 +1,355 @@
+// The turtle as a machine over a geometry sink: it walks modules one at a time and hands
+// segments, polygons and surfaces to the sink, which may store them (a Scene), draw them
+// straight into an image, or drop them (walking only, for query modules). One definition
+// serves every use; the sink is a template parameter so the per-segment call inlines.
+//
+// Orientation is the frame H, L, U (heading, left, up; H x L = U). Each rotation turns one
+// vector of the frame toward another, which is how LSFP ch. 2 describes them: + turns H
+// toward L (left), & pitches H toward -U (down), \ rolls L toward -U (left). The book's
+// printed matrices R_U, R_L, R_H are applied as [H L U] R^T, which gives exactly these.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "graftal/environment.hpp"
+#include "graftal/lsystem.hpp"
+#include "graftal/scene.hpp"
+
+namespace graftal::turtle {
+
+enum class TurtleOp : std::uint8_t {
+    None, Forward, Move, ForwardNoVertex, MoveNoVertex, RecordVertex, TurnLeft, TurnRight,
+    PitchDown, PitchUp, RollLeft, RollRight, TurnAround, RollToVertical, Push, Pop,
+    PolygonBegin, PolygonEnd, WidthDown, WidthUp, ColorNext, ColorPrevious, Surface,
+};
+
+inline constexpr double kPi = 3.14159265358979323846;
+
+inline TurtleOp opFor(Symbol s) {
+    switch (s) {
+        case 'F': return TurtleOp::Forward;
+        case 'f': return TurtleOp::Move;
+        case 'G': return TurtleOp::ForwardNoVertex;
+        case 'g': return TurtleOp::MoveNoVertex;
+        case '.': return TurtleOp::RecordVertex;
+        case '+': return TurtleOp::TurnLeft;
+        case '-': return TurtleOp::TurnRight;
+        case '&': return TurtleOp::PitchDown;
+        case '^': return TurtleOp::PitchUp;
+        case '\\': return TurtleOp::RollLeft;
+        case '/': return TurtleOp::RollRight;
+        case '|': return TurtleOp::TurnAround;
+        case '$': return TurtleOp::RollToVertical;
+        case '[': return TurtleOp::Push;
+        case ']': return TurtleOp::Pop;
+        case '{': return TurtleOp::PolygonBegin;
+        case '}': return TurtleOp::PolygonEnd;
+        case '!': return TurtleOp::WidthDown;
+        case '#': return TurtleOp::WidthUp;
+        case '\'':
+        case ';': return TurtleOp::ColorNext;
+        case ',': return TurtleOp::ColorPrevious;
+        default: return TurtleOp::None;
+    }
+}
+
+inline Vec3 operator+(Vec3 a, Vec3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+inline Vec3 operator-(Vec3 a, Vec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline Vec3 operator*(Vec3 a, double k) { return {a.x * k, a.y * k, a.z * k}; }
+inline double dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline Vec3 cross(Vec3 a, Vec3 b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+inline double length(Vec3 a) { return std::sqrt(dot(a, a)); }
+inline Vec3 normalized(Vec3 a) {
+    double n = length(a);
+    return n > 0 ? a * (1 / n) : a;
+}
+
+// Rotates v about the unit axis k by `radians` (Rodrigues).
+inline Vec3 rotateAbout(Vec3 v, Vec3 k, double radians) {
+    double c = std::cos(radians), s = std::sin(radians);
+    return v * c + cross(k, v) * s + k * (dot(k, v) * (1 - c));
+}
+
+struct TurtleState {
+    Vec3 position;
+    Vec3 heading{0, 1, 0}, left{-1, 0, 0}, up{0, 0, 1};  // H x L = U
+    float width = 1;
+    std::uint16_t color = 0;
+    std::uint32_t lastSegment = kNoSegment;  // the axis a new segment continues
+};
+
+// a' = a cos + b sin, b' = b cos - a sin: turns a toward b.
+inline void rotatePair(Vec3& a, Vec3& b, double c, double s) {
+    Vec3 na = a * c + b * s;
+    Vec3 nb = b * c + a * (-s);
+    a = na;
+    b = nb;
+}
+
+using Visitor = std::function<void(std::size_t, const TurtleFrame&)>;
+
+// A Sink provides:
+//   std::uint32_t segment(const Segment&)   -> the index later segments link to
+//   void polygon(std::span<const Vec3>, std::uint16_t color)
+//   void surface(const std::string& name, const SurfaceInstance&)
+//   void baseWidth(float), void finish(bool is3D)
+template <class Sink>
+class TurtleMachine {
+public:
+    TurtleMachine(const LSystem& ls, Sink& sink) : ls_(ls), sink_(sink) {
+        const ViewSettings& v = ls.view;
+        for (std::size_t s = 0; s < ops_.size(); ++s)
+            ops_[s] = s < ls.symbols.size() ? opFor(static_cast<Symbol>(s)) : TurtleOp::None;
+        for (std::size_t s = kFirstDeclaredSymbol; s < ls.symbols.size(); ++s) {
+            const std::string& name = ls.symbols.name(static_cast<Symbol>(s));
+            if (name.size() > 1 && name[0] == '~') ops_[s] = TurtleOp::Surface;
+        }
+        double delta = v.angleDegrees * kPi / 180.0;
+        deltaCos_ = std::cos(delta);
+        deltaSin_ = std::sin(delta);
+        turnSign_ = v.clockwisePlus ? -1.0 : 1.0;
+        double h = v.initialHeading * kPi / 180.0;
+        rotatePair(state_.heading, state_.left, std::cos(h), std::sin(h));
+        state_.width = static_cast<float>(v.initialWidth);
+        if (v.tropism && v.elasticity != 0) {
+            tropism_ = *v.tropism;
+            elasticity_ = v.elasticity;
+            hasTropism_ = true;
+        }
+        sink_.baseWidth(state_.width);
+    }
+
+    void run(const ModuleString& m, const std::vector<bool>* wanted = nullptr,
+             const Visitor* visit = nullptr) {
+        std::span<const Symbol> syms = m.symbols();
+        bool params = m.hasParameters();
+        for (std::size_t i = 0; i < syms.size(); ++i) {
+            if (wanted && syms[i] < wanted->size() && (*wanted)[syms[i]])
+                (*visit)(i, TurtleFrame{state_.position, state_.heading, state_.left, state_.up});
+            module(syms[i], params ? m.params(i) : std::span<const double>{}, i);
+        }
+        finish();
+    }
+
+    // One module of a string that arrives piece by piece (streamed derivations).
+    void module(Symbol s, std::span<const double> args, std::size_t index) {
+        TurtleOp op = ops_[s];
+        if (op != TurtleOp::None) apply(op, args, index, s);
+    }
+
+    void finish() {
+        if (!polygons_.empty())
+            throw Error(SourceLocation{ls_.file, 0, 0},
+                        "the derived string leaves a '{' open (module " +
+                            std::to_string(polygonOpenedAt_.back()) +
+                            "): expected a matching '}'");
+        sink_.finish(is3D_);
+    }
+
+private:
+    // Turns a toward b by the angle argument, or by delta (cos and sin precomputed).
+    void turn(Vec3& a, Vec3& b, std::span<const double> args, double sign) {
+        if (args.empty()) {
+            rotatePair(a, b, deltaCos_, sign * deltaSin_);
+        } else {
+            double r = args[0] * kPi / 180.0;
+            rotatePair(a, b, std::cos(r), sign * std::sin(r));
+        }
+        if (++rotations_ % 4096 == 0) orthonormalise();
+    }
+
+    // Rounding drifts the frame after very many rotations; Gram-Schmidt puts it back.
+    void orthonormalise() {
+        state_.heading = normalized(state_.heading);
+        state_.left = normalized(state_.left - state_.heading * dot(state_.left, state_.heading));
+        state_.up = cross(state_.heading, state_.left);
+    }
+
+    void mark3D() { is3D_ = true; }
+
+    // LSFP ch. 3.1 and SIGGRAPH '88 §3: after each segment the heading bends toward T by
+    // alpha = e |H x T| (away from T when e < 0), a torque-like heuristic.
+    void applyTropism() {
+        Vec3 axis = cross(state_.heading, tropism_);
+        double n = length(axis);
+        if (n < 1e-12) return;
+        double alpha = elasticity_ * n;
+        axis = axis * (1 / n);
+        state_.heading = normalized(rotateAbout(state_.heading, axis, alpha));
+        state_.left = normalized(rotateAbout(state_.left, axis, alpha));
+        state_.up = cross(state_.heading, state_.left);
+    }
+
+    void forward(double length, bool draw, bool vertex) {
+        Vec3 from = state_.position;
+        state_.position = from + state_.heading * length;
+        // A plant is 3D when its geometry leaves the z = 0 plane, not merely because it
+        // rolled: a roll by 180 degrees keeps a plant flat (up to rounding, hence the
+        // tolerance relative to the step).
+        if (std::fabs(state_.position.z) > 1e-9 * (1 + std::fabs(length))) mark3D();
+        if (!polygons_.empty()) {
+            if (vertex) polygons_.back().push_back(state_.position);
+        } else if (draw) {
+            state_.lastSegment = sink_.segment(Segment{from, state_.position, state_.width,
+                                                       state_.color, state_.lastSegment, state_.up});
+        } else {
+            state_.lastSegment = kNoSegment;  // a move starts a new axis
+        }
+        if (draw && hasTropism_) applyTropism();
+    }
+
+    double lengthArg(std::span<const double> args) const {
+        return args.empty() ? ls_.view.stepLength : args[0];
+    }
+
+    void apply(TurtleOp op, std::span<const double> args, std::size_t index, Symbol symbol) {
+        switch (op) {
+            case TurtleOp::None: break;
+            case TurtleOp::Forward: forward(lengthArg(args), true, true); break;
+            case TurtleOp::Move: forward(lengthArg(args), false, true); break;
+            case TurtleOp::ForwardNoVertex:
+                if (polygons_.empty()) forward(lengthArg(args), true, false);
+                else forward(lengthArg(args), false, false);
+                break;
+            case TurtleOp::MoveNoVertex: forward(lengthArg(args), false, false); break;
+            case TurtleOp::RecordVertex:
+                if (!polygons_.empty()) polygons_.back().push_back(state_.position);
+                break;
+            case TurtleOp::TurnLeft: turn(state_.heading, state_.left, args, turnSign_); break;
+            case TurtleOp::TurnRight: turn(state_.heading, state_.left, args, -turnSign_); break;
+            case TurtleOp::TurnAround:
+                state_.heading = state_.heading * -1.0;
+                state_.left = state_.left * -1.0;
+                break;
+            case TurtleOp::PitchDown: turn(state_.heading, state_.up, args, -1); break;
+            case TurtleOp::PitchUp: turn(state_.heading, state_.up, args, 1); break;
+            case TurtleOp::RollLeft: turn(state_.left, state_.up, args, -1); break;
+            case TurtleOp::RollRight: turn(state_.left, state_.up, args, 1); break;
+            case TurtleOp::RollToVertical: rollToVertical(); break;
+            case TurtleOp::Push: {
+                stack_.push_back(state_);
+                state_.lastSegment = kNoSegment;  // a branch is a new axis
+                break;
+            }
+            case TurtleOp::Pop:
+                if (stack_.empty())
+                    throw Error(SourceLocation{ls_.file, 0, 0},
+                                "']' at module " + std::to_string(index) +
+                                    " of the derived string pops an empty turtle stack "
+                                    "(more ']' than '[')");
+                state_ = stack_.back();
+                stack_.pop_back();
+                break;
+            case TurtleOp::PolygonBegin:
+                polygons_.emplace_back();
+                polygons_.back().push_back(state_.position);
+                polygonOpenedAt_.push_back(index);
+                break;
+            case TurtleOp::PolygonEnd:
+                if (polygons_.empty())
+                    throw Error(SourceLocation{ls_.file, 0, 0},
+                                "'}' at module " + std::to_string(index) +
+                                    " of the derived string closes no polygon (no '{' is open)");
+                if (polygons_.back().size() >= 3) sink_.polygon(polygons_.back(), state_.color);
+                polygons_.pop_back();
+                polygonOpenedAt_.pop_back();
+                break;
+            case TurtleOp::WidthDown:
+                state_.width = args.empty() ? state_.width * static_cast<float>(ls_.view.widthFactor)
+                                            : static_cast<float>(args[0]);
+                break;
+            case TurtleOp::WidthUp:
+                state_.width = args.empty() ? state_.width / static_cast<float>(ls_.view.widthFactor)
+                                            : static_cast<float>(args[0]);
+                break;
+            case TurtleOp::ColorNext:
+                state_.color = args.empty() ? static_cast<std::uint16_t>(state_.color + 1)
+                                            : static_cast<std::uint16_t>(args[0]);
+                break;
+            case TurtleOp::ColorPrevious:
+                if (!args.empty()) state_.color = static_cast<std::uint16_t>(args[0]);
+                else if (state_.color > 0) --state_.color;
+                break;
+            case TurtleOp::Surface: placeSurface(symbol, args); break;
+        }
+    }
+
+    // ABOP's $: roll about H so that L is horizontal (L = V x H / |V x H|, V = world up).
+    void rollToVertical() {
+        Vec3 v{0, 1, 0};
+        Vec3 l = cross(v, state_.heading);
+        double n = length(l);
+        if (n < 1e-12) return;  // heading vertical: any roll is as good
+        state_.left = l * (1 / n);
+        state_.up = cross(state_.heading, state_.left);
+    }
+
+    void placeSurface(Symbol symbol, std::span<const double> args) {
+        mark3D();
+        SurfaceInstance s;
+        s.origin = state_.position;
+        s.heading = state_.heading;
+        s.left = state_.left;
+        s.up = state_.up;
+        s.scale = args.empty() ? 1.0 : args[0];
+        s.color = state_.color;
+        sink_.surface(ls_.symbols.name(symbol).substr(1), s);
+    }
+
+    const LSystem& ls_;
+    Sink& sink_;
+    std::array<TurtleOp, kMaxSymbols> ops_{};
+    double deltaCos_ = 1, deltaSin_ = 0, turnSign_ = 1;
+    Vec3 tropism_{0, -1, 0};
+    double elasticity_ = 0;
+    bool hasTropism_ = false;
+    bool is3D_ = false;
+    std::uint64_t rotations_ = 0;
+    TurtleState state_;
+    std::vector<TurtleState> stack_;
+    std::vector<std::vector<Vec3>> polygons_;
+    std::vector<std::size_t> polygonOpenedAt_;
+};
+
+
+// Stores everything: what interpret() returns.
+class SceneSink {
+public:
+    explicit SceneSink(Scene& scene) : scene_(scene) {}
+    std::uint32_t segment(const Segment& s) {
+        scene_.segments.push_back(s);
+        return static_cast<std::uint32_t>(scene_.segments.size() - 1);
+    }
+    void polygon(std::span<const Vec3> v, std::uint16_t color) { scene_.addPolygon(v, color); }
+    void surface(const std::string& name, SurfaceInstance s) {
+        auto it = std::find(scene_.surfaceNames.begin(), scene_.surfaceNames.end(), name);
+        s.surface = static_cast<std::uint32_t>(it - scene_.surfaceNames.begin());
+        if (it == scene_.surfaceNames.end()) scene_.surfaceNames.push_back(name);
+        scene_.surfaces.push_back(s);
+    }
+    void baseWidth(float w) { scene_.baseWidth = w; }
+    void finish(bool is3D) { scene_.is3D = is3D; }
+
+private:
+    Scene& scene_;
+};
+
+// Keeps nothing: the turtle only walks.
+class NullSink {
+public:
+    std::uint32_t segment(const Segment&) { return kNoSegment; }
+    void polygon(std::span<const Vec3>, std::uint16_t) {}
+    void surface(const std::string&, const SurfaceInstance&) {}
+    void baseWidth(float) {}
+    void finish(bool) {}
+};
+
+}  // namespace graftal::turtle
