@@ -37,12 +37,14 @@ TEST(Examples, EveryExampleParsesDerivesAndDraws) {
         ModuleString s = derive(ls);
         EXPECT_GT(s.size(), 0u);
         EXPECT_LT(s.size(), 20'000'000u) << "examples stay quick";
-        Scene scene = interpret(ls, s);
+        ModuleString drawn = applyHomomorphism(ls, s);
+        Scene scene = interpret(ls, drawn);
         EXPECT_TRUE(ls.warnings.empty()) << ls.warnings.front().toString();
         bool drawsSomething = false;
-        for (Symbol sym : s.symbols()) drawsSomething |= sym == 'F' || sym == '{';
+        for (Symbol sym : drawn.symbols()) drawsSomething |= sym == 'F' || sym == '{';
         if (drawsSomething) {
-            EXPECT_GT(scene.segments.size() + scene.polygonCount(), 0u) << "draws something";
+            EXPECT_GT(scene.segments.size() + scene.polygonCount() + scene.surfaces.size(), 0u)
+                << "draws something";
         }
     }
 }

@@ -3,6 +3,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 
@@ -19,6 +20,8 @@ struct DerivationOptions {
     unsigned threads = 0;               // 0: one per core. The output never depends on it.
     // Answers ?E modules. nullptr: the one the file's `environment:` lines describe (if any).
     Environment* environment = nullptr;
+    // Called after every step with the step number and the string's size (for progress).
+    std::function<void(int step, std::size_t modules)> progress;
 };
 
 class Derivation {

@@ -1,7 +1,16 @@
 // The public API of graftal: text -> LSystem -> module string -> geometry -> output.
 #pragma once
 
+#include "graftal/bspline.hpp"
+#include "graftal/color_map.hpp"
 #include "graftal/derivation.hpp"
+#include "graftal/environment.hpp"
+#include "graftal/growth.hpp"
+#include "graftal/mesh.hpp"
+#include "graftal/projection.hpp"
+#include "graftal/render3d.hpp"
+#include "graftal/streaming.hpp"
+#include "graftal/surface.hpp"
 #include "graftal/diagnostics.hpp"
 #include "graftal/expression.hpp"
 #include "graftal/lsystem.hpp"

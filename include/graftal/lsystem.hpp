@@ -47,6 +47,7 @@ struct ViewSettings {
     bool parallelProjection = false;
     std::optional<Rgb> background;
     std::string colorMap;               // a cpfg .map file, relative to the L-system file
+    int splineSubdivisions = 0;         // > 0: draw turtle paths as B-splines (LSFP Fig 2.10)
     std::vector<SurfaceDeclaration> surfaces;
 };
 

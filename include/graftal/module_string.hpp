@@ -126,5 +126,7 @@ private:
 
 // Shortest decimal text that reads back as the same double; integers without a point.
 std::string formatNumber(double v);
+// "190.7 MiB": binary units, as --memory-limit reads them (2G is 2 GiB).
+std::string formatBytes(double bytes);
 
 }  // namespace graftal

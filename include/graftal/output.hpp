@@ -81,6 +81,10 @@ enum class ImageFormat { Svg, Png, Pdf };
 // From the file name's extension (case-insensitive); nullopt for an unknown one.
 std::optional<ImageFormat> imageFormatFor(const std::filesystem::path& path);
 
+// ".<name>.tmp-<pid>-<n>" beside `target`: hidden, recognisably graftal's, unique per
+// process and call. Every file writer writes there first and renames over the target.
+std::filesystem::path temporaryPathBeside(const std::filesystem::path& target);
+
 // Calls write(temporary) for a temporary file beside `path` and renames it into place
 // when write returns; on any failure the temporary is removed and nothing is left at
 // `path`. Errors name `path`, never the temporary. Every file writer goes through this.

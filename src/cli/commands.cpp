@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <chrono>
+#include <unistd.h>
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
@@ -26,7 +28,17 @@ void printWarnings(const LSystem& ls) {
 
 nlohmann::ordered_json point(const Vec3& p) { return {p.x, p.y, p.z}; }
 
+
 }  // namespace
+
+namespace {
+bool progressShown = false;  // a progress line is on stderr and needs its newline
+}  // namespace
+
+void endProgressLine() {
+    if (progressShown) std::cerr << '\n';
+    progressShown = false;
+}
 
 void note(const InputOptions& in, const std::string& message) {
     if (!in.quiet) std::cerr << "graftal: note: " << message << '\n';
@@ -49,6 +61,16 @@ DerivationOptions derivationOptions(const InputOptions& in) {
     opts.memoryLimit = in.memoryLimit;
     opts.seed = in.seed;
     opts.threads = in.threads;
+    // Progress for long derivations, only where a person watches (a terminal), and only
+    // once a derivation has taken more than a second.
+    if (!in.quiet && ::isatty(2)) {
+        auto start = std::chrono::steady_clock::now();
+        opts.progress = [start](int step, std::size_t modules) {
+            if (std::chrono::steady_clock::now() - start < std::chrono::seconds(1)) return;
+            std::cerr << "\rgraftal: step " << step << ": " << modules << " modules   " << std::flush;
+            progressShown = true;
+        };
+    }
     return opts;
 }
 
@@ -80,10 +102,9 @@ bool chooseStreaming(const Loaded& l, const InputOptions& in, bool canStream) {
     }
     throw Error(SourceLocation{l.lsystem.file, 0, 0},
                 "derivation step " + std::to_string(l.steps) + " would make a string of " + size +
-                    " modules (about " + formatNumber(std::round(bytes / (1 << 20))) +
-                    " MiB), more than the memory limit of " +
-                    formatNumber(std::round(static_cast<double>(in.memoryLimit) / (1 << 20))) +
-                    " MiB; lower the derivation length (-n) or raise --memory-limit" +
+                    " modules (about " + formatBytes(bytes) + "), more than the memory limit of " +
+                    formatBytes(static_cast<double>(in.memoryLimit)) +
+                    "; lower the derivation length (-n) or raise --memory-limit" +
                     (obstacle.empty() || !canStream ? std::string()
                                                     : " (it cannot be streamed: " + obstacle + ")"));
 }
@@ -92,6 +113,7 @@ Derived loadAndDerive(const InputOptions& in) {
     Loaded l = loadInput(in);
     Derived d{std::move(l.lsystem), {}, l.steps};
     d.modules = derive(d.lsystem, d.steps, derivationOptions(in));
+    endProgressLine();
     return d;
 }
 

@@ -34,6 +34,7 @@ struct RenderCommandOptions {
     std::optional<double> fieldOfView;
     int samplesPerPixel = 4;
     int tubeSides = 8;
+    std::optional<int> spline;           // --spline N: B-spline subdivisions (0: off)
     bool sizeGiven = false, backgroundGiven = false;
 };
 
@@ -61,6 +62,7 @@ DerivationOptions derivationOptions(const InputOptions& in);
 // says so). When it would not fit and cannot stream, refuses before allocating.
 bool chooseStreaming(const Loaded& l, const InputOptions& in, bool canStream);
 void note(const InputOptions& in, const std::string& message);
+void endProgressLine();
 
 // "2G", "512M", "1000000" -> bytes; throws Error on a malformed size.
 std::size_t parseByteSize(const std::string& text);

@@ -57,9 +57,11 @@ int main(int argc, char** argv) {
     stats->add_flag("--predict", predict,
                     "module counts per step from the productions, without deriving");
 
-    auto* render = app.add_subcommand("render", "draw the L-system to .svg, .png or .pdf");
+    auto* render = app.add_subcommand(
+        "render", "draw the L-system: pictures (.svg .png .pdf) or 3D files (.obj .ply .glb)");
     addInputOptions(*render, in, memoryLimit);
-    render->add_option("-o,--output", out.output, "output picture (.svg, .png, .pdf)")->required();
+    render->add_option("-o,--output", out.output, "output file: .svg .png .pdf .obj .ply .glb")
+        ->required();
     render->add_option("--size", size, "picture size WxH in pixels (default 800x800)");
     render->add_option("--line-width", out.render.lineWidth, "line width in pixels (0: automatic)")
         ->check(CLI::Range(0.0, 1000.0));
@@ -72,12 +74,15 @@ int main(int argc, char** argv) {
     render->add_option("--target", target, "3D point the camera looks at, x,y,z");
     render->add_option("--up", up, "3D camera up vector x,y,z (default 0,1,0)");
     render->add_option("--fov", out.fieldOfView, "3D vertical field of view, degrees")
-        ->check(CLI::Range(1.0, 179.0));
+        ->check(CLI::Range(0.01, 179.99));
     render->add_option("--light", light, "3D direction towards the sun, x,y,z");
     render->add_option("--spp", out.samplesPerPixel, "3D samples per pixel (antialiasing)")
         ->check(CLI::Range(1, 1024));
     render->add_option("--tube-sides", out.tubeSides, "3D cylinder cross-section vertices")
         ->check(CLI::Range(3, 64));
+    render->add_option("--spline", out.spline,
+                       "draw turtle paths as B-splines with N points per segment (0: straight)")
+        ->check(CLI::Range(0, 64));
 
     try {
         app.parse(argc, argv);

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "commands.hpp"
+#include "graftal/bspline.hpp"
 #include "graftal/color_map.hpp"
 #include "graftal/derivation.hpp"
 #include "graftal/mesh.hpp"
@@ -56,12 +57,13 @@ SurfaceLibrary surfacesFor(const LSystem& ls, const std::string& file) {
     return lib;
 }
 
-RaytraceOptions raytraceOptions(const LSystem& ls, const RenderCommandOptions& out) {
+RaytraceOptions raytraceOptions(const LSystem& ls, const RenderCommandOptions& out, unsigned threads) {
     const ViewSettings& v = ls.view;
     RaytraceOptions r;
     r.width = out.render.width;
     r.height = out.render.height;
     r.samplesPerPixel = out.samplesPerPixel;
+    r.threads = threads;
     r.background = out.backgroundGiven ? out.render.background : v.background.value_or(out.render.background);
     r.camera.viewpoint = out.viewpoint ? out.viewpoint : v.viewpoint;
     r.camera.target = out.target ? out.target : v.viewReferencePoint;
@@ -104,6 +106,8 @@ int runRender(const InputOptions& in, const RenderCommandOptions& out) {
     }
     Derived d = loadAndDerive(in);
     Scene scene = interpret(d.lsystem, applyHomomorphism(d.lsystem, d.modules, derivationOptions(in)));
+    if (int n = out.spline.value_or(d.lsystem.view.splineSubdivisions); n > 0)
+        scene = smoothSegments(scene, n);
     if (!d.lsystem.view.colorMap.empty()) {
         std::filesystem::path map = std::filesystem::path(in.file).parent_path() / d.lsystem.view.colorMap;
         scene.palette = loadColorMap(map);
@@ -131,7 +135,7 @@ int runRender(const InputOptions& in, const RenderCommandOptions& out) {
         case OutputKind::Obj: writeObj(mesh, out.output); break;
         case OutputKind::Ply: writePly(mesh, out.output); break;
         case OutputKind::Glb: writeGlb(mesh, out.output); break;
-        case OutputKind::Picture: renderRaytraced(mesh, raytraceOptions(d.lsystem, out), out.output); break;
+        case OutputKind::Picture: renderRaytraced(mesh, raytraceOptions(d.lsystem, out, in.threads), out.output); break;
     }
     return 0;
 }

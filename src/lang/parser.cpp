@@ -40,7 +40,7 @@ const std::vector<std::string> kKeywords = {
     "viewpoint",       "view reference point", "up vector", "projection",  "field of view",
     "light direction", "background",        "line style",  "line width",  "width factor",
     "tropism direction", "tropism elasticity", "initial elasticity", "elasticity",
-    "color map",       "colour map",        "surface",
+    "color map",       "colour map",        "surface",     "spline subdivisions",
 };
 
 

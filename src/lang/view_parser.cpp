@@ -100,6 +100,13 @@ bool Parser::parseViewSetting(const SourceLine& line, const std::string& kw, std
         if (word == "cylinder" || word == "cylinders" || word == "polygon") view.lineStyle = LineStyle::Cylinders;
         else if (word == "lines" || word == "line" || word == "pixel") view.lineStyle = LineStyle::Lines;
         else diags_.error(loc, "line style is 'cylinder' or 'lines', not '" + std::string(value) + "'");
+    } else if (kw == "spline subdivisions") {
+        if (!constantValue(line, valueStart, d)) return true;
+        if (d < 0 || d > 64 || d != std::floor(d)) {
+            diags_.error(loc, "spline subdivisions is a whole number from 0 (straight lines) to 64");
+            return true;
+        }
+        view.splineSubdivisions = static_cast<int>(d);
     } else if (kw == "line width") {
         if (!constantValue(line, valueStart, d)) return true;
         if (d <= 0) {

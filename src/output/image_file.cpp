@@ -24,17 +24,6 @@ Error fileError(const fs::path& path, const std::string& message) {
     return Error(SourceLocation{path.string(), 0, 0}, message);
 }
 
-// ".<name>.tmp-<pid>-<n>": hidden, recognisably ours, and unique per process and call so
-// that two threads writing the same picture do not clobber each other's temporary.
-fs::path temporaryPathFor(const fs::path& path) {
-    static std::atomic<unsigned> counter{0};
-    // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) about "." + std::string.
-    std::string name = ".";
-    name += path.filename().string();
-    name += ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
-    return path.parent_path() / name;
-}
-
 void writeSvgFile(const Scene& scene, const RenderOptions& o, const fs::path& path) {
     std::ofstream out(path, std::ios::binary | std::ios::trunc);
     if (!out) throw fileError(path, std::string("cannot create file: ") + std::strerror(errno));
@@ -85,6 +74,15 @@ void writeImage(const Scene& scene, const RenderOptions& o, const fs::path& path
     });
 }
 
+fs::path temporaryPathBeside(const fs::path& target) {
+    static std::atomic<unsigned> counter{0};
+    // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) about "." + std::string.
+    std::string name = ".";
+    name += target.filename().string();
+    name += ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+    return target.parent_path() / name;
+}
+
 void writeFileAtomically(const fs::path& path, const std::function<void(const fs::path&)>& write) {
     const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
     std::error_code ec;
@@ -93,7 +91,7 @@ void writeFileAtomically(const fs::path& path, const std::function<void(const fs
                         "cannot write image: '" + dir.string() +
                             (fs::exists(dir, ec) ? "' is not a directory" : "' does not exist"));
 
-    const fs::path temporary = temporaryPathFor(path);
+    const fs::path temporary = temporaryPathBeside(path);
     try {
         write(temporary);
         fs::rename(temporary, path, ec);

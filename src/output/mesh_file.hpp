@@ -20,6 +20,7 @@
 
 #include "graftal/diagnostics.hpp"
 #include "graftal/mesh.hpp"
+#include "graftal/output.hpp"
 
 namespace graftal::mesh_file {
 
@@ -42,12 +43,7 @@ public:
             throw fileError(
                 target_, "cannot write " + format_ + ": '" + dir.string() +
                              (fs::exists(dir, ec) ? "' is not a directory" : "' does not exist"));
-        static std::atomic<unsigned> counter{0};
-        // Built piece by piece: GCC 12 warns falsely (-Wrestrict) about "." + std::string.
-        std::string name = ".";
-        name += target_.filename().string();
-        name += ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
-        temporary_ = dir / name;
+        temporary_ = temporaryPathBeside(target_);
         out_.open(temporary_, std::ios::binary | std::ios::trunc);
         if (!out_)
             throw fileError(target_, "cannot write " + format_ + ": cannot create a file in '" +

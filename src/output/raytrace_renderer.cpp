@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "graftal/diagnostics.hpp"
+#include "graftal/output.hpp"
 #include "graftal/render3d.hpp"
 
 namespace graftal {
@@ -598,15 +599,6 @@ void fillBackground(std::vector<unsigned char>& pixels, const Rgb& background) {
     for (std::size_t i = 0; i < pixels.size(); i += 3) std::memcpy(&pixels[i], bytes, 3);
 }
 
-// ".<name>.tmp-<pid>-<n>" beside the target, as writeImage names its temporaries.
-fs::path temporaryPathFor(const fs::path& path) {
-    static std::atomic<unsigned> counter{0};
-    std::string name = ".";
-    name += path.filename().string();
-    name += ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
-    return path.parent_path() / name;
-}
-
 void writePngFile(const std::vector<unsigned char>& rgb, int width, int height,
                   const fs::path& path) {
     SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, width, height),
@@ -686,19 +678,9 @@ void renderRaytraced(const Mesh& mesh, const RaytraceOptions& options, const fs:
         throw fileError(path, messageOf(e));
     }
 
-    const fs::path temporary = temporaryPathFor(path);
-    try {
+    writeFileAtomically(path, [&](const fs::path& temporary) {
         writePngFile(pixels, options.width, options.height, temporary);
-        fs::rename(temporary, path, ec);
-        if (ec) throw fileError(path, "cannot write image: " + ec.message());
-    } catch (const Error& e) {
-        fs::remove(temporary, ec);
-        // The writer names the temporary; the user knows only the target.
-        throw fileError(path, messageOf(e));
-    } catch (...) {
-        fs::remove(temporary, ec);
-        throw;
-    }
+    });
 }
 
 }  // namespace graftal

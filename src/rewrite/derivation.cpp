@@ -162,6 +162,7 @@ void Derivation::step() {
     std::swap(current_, next_);
     ++steps_;
     afterStep(stepNumber);
+    if (options_.progress) options_.progress(stepNumber, current_->size());
 }
 
 void Derivation::run(int steps) {

@@ -7,6 +7,7 @@
 
 #include "graftal/expression.hpp"
 #include "graftal/lsystem.hpp"
+#include "environment_detail.hpp"
 
 namespace graftal {
 
@@ -14,13 +15,7 @@ namespace graftal {
 // files repeats the declarations it uses; the definitions live here.
 namespace environment_detail {
 
-std::vector<EnvironmentLine> splitWords(const EnvironmentLine& line);
-SourceLocation endOfLine(const EnvironmentLine& line);
-double numberWord(const EnvironmentLine& word, const std::string& what, const LSystem& lsystem);
 
-std::unique_ptr<Environment> makeObstacleEnvironment(const LSystem& lsystem);
-std::unique_ptr<Environment> makeOccupancyEnvironment(const LSystem& lsystem, bool light);
-std::unique_ptr<Environment> makeProcessEnvironment(const LSystem& lsystem);
 
 std::vector<EnvironmentLine> splitWords(const EnvironmentLine& line) {
     std::vector<EnvironmentLine> words;

@@ -8,18 +8,10 @@
 
 #include "graftal/environment.hpp"
 #include "graftal/lsystem.hpp"
+#include "environment_detail.hpp"
 
 namespace graftal {
 
-namespace environment_detail {
-
-std::vector<EnvironmentLine> splitWords(const EnvironmentLine& line);
-SourceLocation endOfLine(const EnvironmentLine& line);
-double numberWord(const EnvironmentLine& word, const std::string& what, const LSystem& lsystem);
-
-std::unique_ptr<Environment> makeOccupancyEnvironment(const LSystem& lsystem, bool light);
-
-}  // namespace environment_detail
 
 namespace {
 

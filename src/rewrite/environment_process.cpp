@@ -19,18 +19,10 @@
 
 #include "graftal/environment.hpp"
 #include "graftal/lsystem.hpp"
+#include "environment_detail.hpp"
 
 namespace graftal {
 
-namespace environment_detail {
-
-std::vector<EnvironmentLine> splitWords(const EnvironmentLine& line);
-SourceLocation endOfLine(const EnvironmentLine& line);
-double numberWord(const EnvironmentLine& word, const std::string& what, const LSystem& lsystem);
-
-std::unique_ptr<Environment> makeProcessEnvironment(const LSystem& lsystem);
-
-}  // namespace environment_detail
 
 namespace {
 

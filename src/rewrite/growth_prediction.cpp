@@ -74,11 +74,14 @@ double BigCount::toDouble() const {
 }
 
 std::optional<std::uint64_t> BigCount::toUint64() const {
+    // 2^64 - 1 = 18 446744073 709551615 in base-10^9 limbs.
     if (limbs_.size() > 3) return std::nullopt;
-    unsigned __int128 v = 0;
-    for (std::size_t i = limbs_.size(); i-- > 0;) v = v * kBase + limbs_[i];
-    if (v > ~std::uint64_t(0)) return std::nullopt;
-    return static_cast<std::uint64_t>(v);
+    std::uint64_t low = 0;
+    for (std::size_t i = std::min<std::size_t>(limbs_.size(), 2); i-- > 0;) low = low * kBase + limbs_[i];
+    if (limbs_.size() < 3) return low;
+    std::uint64_t high = limbs_[2];
+    if (high > 18 || (high == 18 && low > 446744073709551615ull)) return std::nullopt;
+    return high * 1000000000000000000ull + low;
 }
 
 namespace {

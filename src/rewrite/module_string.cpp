@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 #include <new>
 
@@ -107,6 +108,18 @@ void ModuleString::append(const ModuleString& other) {
 std::size_t ModuleString::memoryBytes() const {
     return symbols_.capacity() * sizeof(Symbol) + paramStart_.capacity() * sizeof(std::uint32_t) +
            params_.capacity() * sizeof(double);
+}
+
+std::string formatBytes(double b) {
+    const char* units[] = {"bytes", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"};
+    int u = 0;
+    while (b >= 1024 && u < 6) {
+        b /= 1024;
+        ++u;
+    }
+    char buf[64];
+    std::snprintf(buf, sizeof buf, u == 0 ? "%.0f %s" : "%.1f %s", b, units[u]);
+    return buf;
 }
 
 std::string formatNumber(double v) {

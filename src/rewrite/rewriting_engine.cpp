@@ -18,18 +18,6 @@ constexpr std::int32_t kConsumed = -2;  // part of a multi-module predecessor al
 // Below this many modules a step is not worth splitting across threads.
 constexpr std::size_t kParallelThreshold = 1 << 16;
 
-std::string humanBytes(double b) {
-    // Binary units, as --memory-limit reads them (2G is 2 GiB).
-    const char* units[] = {"bytes", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"};
-    int u = 0;
-    while (b >= 1024 && u < 6) {
-        b /= 1024;
-        ++u;
-    }
-    char buf[64];
-    std::snprintf(buf, sizeof buf, u == 0 ? "%.0f %s" : "%.1f %s", b, units[u]);
-    return buf;
-}
 
 bool arityMatches(const ModulePattern& p, const ModuleString& s, std::size_t j) {
     return p.formals.size() == s.params(j).size();
@@ -109,9 +97,9 @@ void RewritingEngine::checkLimit(int stepNumber, std::size_t modules, std::size_
         throw Error(SourceLocation{ls_.file, 0, 0},
                     "derivation step " + std::to_string(stepNumber) +
                         " would make a string of " + std::to_string(modules) + " modules (" +
-                        humanBytes(bytes) + ", " + humanBytes(total) +
+                        formatBytes(bytes) + ", " + formatBytes(total) +
                         " with the previous step), more than the memory limit of " +
-                        humanBytes(static_cast<double>(limit)) +
+                        formatBytes(static_cast<double>(limit)) +
                         "; lower the derivation length (-n) or raise --memory-limit");
     }
 }
