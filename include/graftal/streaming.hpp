@@ -52,6 +52,10 @@ struct StreamedMeasure {
 StreamedMeasure measureStreamed(const LSystem& lsystem, int steps,
                                 const DerivationOptions& options = {}, bool geometry = true);
 
+// The same counts and bounds for a string already derived, walking the turtle without
+// storing any geometry (what `graftal stats` needs, at any size).
+StreamedMeasure measureModules(const LSystem& lsystem, const ModuleString& modules);
+
 // The Scene interpret(derive(...)) would give, built from a streamed derivation.
 Scene interpretStreamed(const LSystem& lsystem, int steps, const DerivationOptions& options = {});
 

@@ -74,7 +74,7 @@ DerivationOptions derivationOptions(const InputOptions& in) {
     return opts;
 }
 
-bool chooseStreaming(const Loaded& l, const InputOptions& in, bool canStream) {
+bool chooseStreaming(const Loaded& l, const InputOptions& in, bool canStream, bool countGeometry) {
     std::string obstacle = streamingObstacle(l.lsystem);
     if (in.stream) {
         if (!obstacle.empty())
@@ -91,6 +91,13 @@ bool chooseStreaming(const Loaded& l, const InputOptions& in, bool canStream) {
     double perModule = l.lsystem.isParametric() ? 2 + 4 + 8 * 2 : 2;
     double last = g.expectedModules.back(), previous = g.expectedModules[g.expectedModules.size() - 2];
     double bytes = (last + previous) * perModule;
+    // A picture drawn from a held string also holds its segments.
+    if (countGeometry && g.exact) {
+        double segments = 0;
+        for (Symbol s : {Symbol('F'), Symbol('G')})
+            if (s < g.symbolsAtEnd.size()) segments += g.symbolsAtEnd[s].toDouble();
+        bytes = last * perModule + segments * static_cast<double>(sizeof(Segment));
+    }
     if (bytes <= static_cast<double>(in.memoryLimit)) return false;
     std::string size = g.exact ? g.modules.back().toString() : "about " + formatNumber(std::round(last));
     if (canStream && obstacle.empty() && last > streamLimit)
@@ -305,15 +312,20 @@ int runStats(const InputOptions& in, bool geometry, bool predict) {
         return 0;
     }
     ModuleString modules = derive(l.lsystem, l.steps, derivationOptions(in));
+    endProgressLine();
     std::vector<std::uint64_t> counts(l.lsystem.symbols.size(), 0);
     for (Symbol s : modules.symbols()) ++counts[s];
     j["modules"] = modules.size();
     j["symbols"] = symbolsJson(l.lsystem.symbols, counts);
     if (geometry) {
-        Scene scene = interpret(l.lsystem, applyHomomorphism(l.lsystem, modules, derivationOptions(in)));
-        j["segments"] = scene.segments.size();
-        j["polygons"] = scene.polygonCount();
-        Bounds b = scene.bounds();
+        // Counts and bounds only: the turtle walks without storing any geometry.
+        StreamedMeasure m = measureModules(
+            l.lsystem, l.lsystem.homomorphism.empty()
+                           ? modules
+                           : applyHomomorphism(l.lsystem, modules, derivationOptions(in)));
+        j["segments"] = m.segments;
+        j["polygons"] = m.polygons;
+        Bounds b = m.bounds;
         if (b.empty()) b.extend(Vec3{});  // nothing drawn: the turtle's start
         j["bbox"] = {{"min", point(b.min)}, {"max", point(b.max)}};
     }

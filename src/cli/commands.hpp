@@ -60,7 +60,8 @@ DerivationOptions derivationOptions(const InputOptions& in);
 // Whether to stream: when --stream asks (an error if the L-system cannot be streamed), or
 // when the predicted string would not fit the memory limit and `canStream` (then a note
 // says so). When it would not fit and cannot stream, refuses before allocating.
-bool chooseStreaming(const Loaded& l, const InputOptions& in, bool canStream);
+bool chooseStreaming(const Loaded& l, const InputOptions& in, bool canStream,
+                     bool countGeometry = false);
 void note(const InputOptions& in, const std::string& message);
 void endProgressLine();
 

@@ -94,6 +94,17 @@ StreamedMeasure measureStreamed(const LSystem& ls, int steps, const DerivationOp
     return m;
 }
 
+StreamedMeasure measureModules(const LSystem& ls, const ModuleString& modules) {
+    StreamedMeasure m;
+    m.symbolCounts.assign(ls.symbols.size(), 0);
+    for (Symbol s : modules.symbols()) ++m.symbolCounts[s];
+    m.modules = modules.size();
+    MeasureSink sink(m);
+    turtle::TurtleMachine<MeasureSink> machine(ls, sink);
+    machine.run(modules);
+    return m;
+}
+
 Scene interpretStreamed(const LSystem& ls, int steps, const DerivationOptions& options) {
     Scene scene;
     turtle::SceneSink sink(scene);
