@@ -130,6 +130,16 @@ int runRender(const InputOptions& in, const RenderCommandOptions& out) {
     MeshOptions mo;
     mo.tubeSides = out.tubeSides;
     mo.cylinders = d.lsystem.view.lineStyle == LineStyle::Cylinders;
+    if (*kind == OutputKind::Picture) {
+        // In a picture, a stem thinner than a pixel would vanish between the rays: draw it at
+        // least about a pixel wide, as line art would. 3D files keep the true widths.
+        Bounds b = scene.bounds();
+        if (!b.empty()) {
+            double extent = std::max({b.max.x - b.min.x, b.max.y - b.min.y, b.max.z - b.min.z});
+            double pixel = extent / (0.6 * std::min(out.render.width, out.render.height));
+            mo.minimumRadius = 0.5 * pixel;
+        }
+    }
     Mesh mesh = buildMesh(scene, mo, &surfaces);
     switch (*kind) {
         case OutputKind::Obj: writeObj(mesh, out.output); break;
