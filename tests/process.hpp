@@ -44,7 +44,7 @@ inline RunResult runGraftal(const std::string& args) {
 
 // A scratch directory removed at the end of the test.
 class TempDir {
-public:
+  public:
     TempDir() {
         static int n = 0;
         path_ = std::filesystem::temp_directory_path() /
@@ -59,7 +59,7 @@ public:
         return p;
     }
 
-private:
+  private:
     std::filesystem::path path_;
 };
 

@@ -10,14 +10,16 @@ using graftal::testing::TempDir;
 
 namespace {
 
-const char* kKoch = "Lsystem: 1\nangle factor: 4\nderivation length: 2\naxiom: F+F+F+F\n"
-                    "F --> F+F-F-FF+F+F-F\nendlsystem\n";
+const char* kKoch =
+    "Lsystem: 1\nangle factor: 4\nderivation length: 2\naxiom: F+F+F+F\n"
+    "F --> F+F-F-FF+F+F-F\nendlsystem\n";
 
 }  // namespace
 
 TEST(Cli, DerivePrintsTheString) {
     TempDir t;
-    auto f = t.write("fib.l", "Lsystem: 1\nderivation length: 5\naxiom: b\na --> ab\nb --> a\nendlsystem\n");
+    auto f = t.write("fib.l",
+                     "Lsystem: 1\nderivation length: 5\naxiom: b\na --> ab\nb --> a\nendlsystem\n");
     auto r = runGraftal("derive " + f.string());
     EXPECT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(r.out, "abaababa\n");
@@ -27,7 +29,8 @@ TEST(Cli, DerivePrintsTheString) {
 
 TEST(Cli, DefinesFromTheCommandLine) {
     TempDir t;
-    auto f = t.write("d.l", "#define N 1\nLsystem: 1\nderivation length: N\naxiom: A\nA --> AB\nendlsystem\n");
+    auto f = t.write(
+        "d.l", "#define N 1\nLsystem: 1\nderivation length: N\naxiom: A\nA --> AB\nendlsystem\n");
     auto r = runGraftal("derive " + f.string() + " -D N=3");
     EXPECT_EQ(r.out, "ABBB\n") << r.err;
 }
@@ -63,9 +66,9 @@ TEST(Cli, RenderWritesEachFormat) {
 
 struct BadInput {
     const char* name;
-    const char* content;  // nullptr: the file does not exist
-    const char* args;     // extra arguments
-    const char* expected; // substring of stderr
+    const char* content;   // nullptr: the file does not exist
+    const char* args;      // extra arguments
+    const char* expected;  // substring of stderr
     const char* outName = "out.png";
 };
 
@@ -88,7 +91,8 @@ TEST_P(CliBadInput, OneClearMessageNonZeroStatusAndNoOutputFile) {
 INSTANTIATE_TEST_SUITE_P(
     Cases, CliBadInput,
     ::testing::Values(
-        BadInput{"UnknownKeyword", "Lsystem: 1\naxoim: F\n", "", "bad.l:2:1: error: unknown keyword 'axoim:'"},
+        BadInput{"UnknownKeyword", "Lsystem: 1\naxoim: F\n", "",
+                 "bad.l:2:1: error: unknown keyword 'axoim:'"},
         BadInput{"MalformedProduction", "Lsystem: 1\naxiom: F\nF => FF\n", "",
                  "bad.l:3:1: error: expected a production"},
         BadInput{"UnbalancedBracket", "Lsystem: 1\naxiom: F\nF --> F[+F\n", "",
@@ -97,12 +101,15 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"NegativeSteps", kKoch, "-n -3", "-n"},
         BadInput{"PopOnEmptyStack", "Lsystem: 1\naxiom: A\nA --> F]F\nendlsystem\n", "-n 1",
                  "bad.l:3:8: error: unbalanced ']' in the successor: no '[' is open here"},
-        BadInput{"BinaryGarbage", "\x7f" "ELF\x02\x01\x01\x00\x00\x00", "",
-                 "bad.l:1:1: error: this is not L-system text"},
+        BadInput{"BinaryGarbage",
+                 "\x7f"
+                 "ELF\x02\x01\x01\x00\x00\x00",
+                 "", "bad.l:1:1: error: this is not L-system text"},
         BadInput{"MemoryLimit", "Lsystem: 1\naxiom: F\nF --> FFFFFFFFFF\nendlsystem\n",
                  "-n 12 --memory-limit 64M",
                  "bad.l: error: derivation step 12 would make a string of 1000000000000 modules"},
-        BadInput{"UnknownFormat", kKoch, "", "x.bmp: unknown format (use .svg, .png, .pdf, .obj, .ply or .glb)", "x.bmp"}),
+        BadInput{"UnknownFormat", kKoch, "",
+                 "x.bmp: unknown format (use .svg, .png, .pdf, .obj, .ply or .glb)", "x.bmp"}),
     [](const auto& param) { return std::string(param.param.name); });
 
 TEST(Cli, NegativeStepCountIsRefused) {

@@ -17,8 +17,8 @@ TEST(Decomposition, AppliesRecursivelyAfterEveryStep) {
 }
 
 TEST(Decomposition, StopsAtTheMaximumDepth) {
-    LSystem ls = parse(
-        "Lsystem: 1\naxiom: A\ndecomposition\nmaximum depth: 3\nA --> aA\nendlsystem\n");
+    LSystem ls =
+        parse("Lsystem: 1\naxiom: A\ndecomposition\nmaximum depth: 3\nA --> aA\nendlsystem\n");
     EXPECT_EQ(derived(ls, 0), "aaaA") << "the axiom is decomposed too";
 }
 

@@ -56,7 +56,8 @@ TEST(Expression, FunctionsUseDegrees) {
     EXPECT_NEAR(eval("atan2(1, 1)"), 45, 1e-12);
     EXPECT_NEAR(eval("asin(1)"), 90, 1e-12);
     EXPECT_DOUBLE_EQ(eval("min(3, max(1, 2))"), 2);
-    EXPECT_DOUBLE_EQ(eval("sign(-4) + fabs(-2) + floor(2.7) + ceil(0.2) + trunc(-1.5)"), -1 + 2 + 2 + 1 - 1);
+    EXPECT_DOUBLE_EQ(eval("sign(-4) + fabs(-2) + floor(2.7) + ceil(0.2) + trunc(-1.5)"),
+                     -1 + 2 + 2 + 1 - 1);
     EXPECT_NEAR(eval("exp(log(5)) + sqrt(16)"), 9, 1e-12);
 }
 
@@ -67,11 +68,13 @@ TEST(Expression, VariablesAndDefines) {
 }
 
 TEST(Expression, ErrorsCarryTheColumn) {
-    EXPECT_EQ(error("x + y"), "t.l:1:5: error: unknown name 'y' (not a parameter of this production)");
+    EXPECT_EQ(error("x + y"),
+              "t.l:1:5: error: unknown name 'y' (not a parameter of this production)");
     EXPECT_EQ(error("sin(1, 2)"), "t.l:1:1: error: sin() takes 1 argument, not 2");
     EXPECT_EQ(error("foo(1)"), "t.l:1:1: error: unknown function 'foo'");
     EXPECT_EQ(error("(1 + 2"), "t.l:1:7: error: expected ')'");
-    EXPECT_EQ(error("1 +"), "t.l:1:4: error: expected a number, a name or '(' but the expression ended");
+    EXPECT_EQ(error("1 +"),
+              "t.l:1:4: error: expected a number, a name or '(' but the expression ended");
     EXPECT_EQ(error("x = 1"), "t.l:1:3: error: expected '==' for a comparison, found '='");
 }
 

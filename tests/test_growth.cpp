@@ -25,7 +25,8 @@ TEST(GrowthPrediction, PredictedCountsEqualDerivedCounts) {
     const char* systems[] = {
         "Lsystem: 1\naxiom: F+F+F+F\nF --> F+F-F-FF+F+F-F\nendlsystem\n",
         "Lsystem: 1\naxiom: X\nX --> F[+X]F[-X]+X\nF --> FF\nendlsystem\n",
-        "module ar, al, br, bl;\nLsystem: 1\naxiom: ar\nar --> al br\nal --> bl ar\nbr --> ar\nbl --> al\nendlsystem\n",
+        "module ar, al, br, bl;\nLsystem: 1\naxiom: ar\nar --> al br\nal --> bl ar\nbr --> ar\nbl "
+        "--> al\nendlsystem\n",
         "Lsystem: 1\naxiom: A\nA --> *\nendlsystem\n",
         "Lsystem: 1\naxiom: X\ntable: a\nX --> XA\nA --> AA\ntable: b\nX --> XB\n"
         "table schedule: a 3, b\nendlsystem\n",
@@ -68,7 +69,8 @@ TEST(GrowthPrediction, SaysWhyItCannotPredict) {
     EXPECT_NE(predictGrowth(parse("Lsystem: 1\naxiom: ba\nb < a --> b\nendlsystem\n"), 3)
                   .reason.find("context"),
               std::string::npos);
-    EXPECT_NE(predictGrowth(parse("Lsystem: 1\naxiom: A(1)\nA(x) : x < 3 --> A(x+1)B\nendlsystem\n"), 3)
-                  .reason.find("conditions"),
-              std::string::npos);
+    EXPECT_NE(
+        predictGrowth(parse("Lsystem: 1\naxiom: A(1)\nA(x) : x < 3 --> A(x+1)B\nendlsystem\n"), 3)
+            .reason.find("conditions"),
+        std::string::npos);
 }

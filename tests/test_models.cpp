@@ -35,7 +35,9 @@ ModuleString deriveSeeded(const LSystem& ls, int n, std::uint64_t seed) {
     return derive(ls, n, o);
 }
 
-std::string str(const LSystem& ls, int n) { return derive(ls, n).toString(ls.symbols); }
+std::string str(const LSystem& ls, int n) {
+    return derive(ls, n).toString(ls.symbols);
+}
 
 // The string without the turtle's turn/roll/pitch symbols (with or without a parameter):
 // what the book prints for an example that adds turns to draw its branches apart.
@@ -49,7 +51,9 @@ std::string stripTurtle(const LSystem& ls, const ModuleString& s) {
     return out.toString(ls.symbols);
 }
 
-std::string stripped(const LSystem& ls, int n) { return stripTurtle(ls, derive(ls, n)); }
+std::string stripped(const LSystem& ls, int n) {
+    return stripTurtle(ls, derive(ls, n));
+}
 
 Symbol sym(const LSystem& ls, const char* name) {
     int id = ls.symbols.find(name);
@@ -87,8 +91,10 @@ Symbol mainTerminal(const ModuleString& s, std::initializer_list<Symbol> of) {
     Symbol last = 0;
     for (std::size_t i = 0; i < s.size(); ++i) {
         Symbol x = s.symbol(i);
-        if (x == '[') ++depth;
-        else if (x == ']') --depth;
+        if (x == '[')
+            ++depth;
+        else if (x == ']')
+            --depth;
         else if (depth == 0)
             for (Symbol o : of)
                 if (x == o) last = x;
@@ -115,20 +121,35 @@ void expectDrawsAndIsSmall(const std::string& file) {
 // Every model file: parses without warnings, stays small and quick, draws something.
 
 TEST(Models, EveryModelFileDrawsAndStaysSmall) {
-    for (const char* f : {
-             "fig3.7-lily-of-the-valley.l", "fig3.8-fern.l", "fig3.9-lychnis-coronaria.l",
-             "fig3.10-capsella-delay.l", "fig3.10-capsella-stochastic.l", "fig3.10-capsella-table.l",
-             "sec3.3.4-compound-raceme.l", "sec3.3.4-compound-raceme-terminal.l",
-             "fig3.14a-acropetal-signal.l", "fig3.14b-basipetal-flowering.l",
-             "fig3.15-mycelis-muralis.l", "fig3.16-stochastic-bush.l", "fig3.17-flower-field.l",
-             "fig6.5-bag-of-candies.l", "siggraph-a-branching-everywhere.l",
-             "siggraph-a-prime-branching-everywhere.l", "siggraph-b-subapical.l",
-             "siggraph-c-prime-acropetal-signal.l", "siggraph-d-basipetal-signal.l",
-             "siggraph-raceme-elongating-internodes.l", "siggraph-lychnis-coronaria.l",
-             "siggraph-flower-field-stochastic-internodes.l", "lecture-parametric-plant.l",
-             "lecture-stochastic-parametric-context.l", "lecture-monopodial-branching.l",
-             "lecture-dichotomic-branching.l", "honda-monopodial-tree.l",
-             "aono-kunii-sympodial-tree.l", "abop-ternary-branching-tree.l"}) {
+    for (const char* f : {"fig3.7-lily-of-the-valley.l",
+                          "fig3.8-fern.l",
+                          "fig3.9-lychnis-coronaria.l",
+                          "fig3.10-capsella-delay.l",
+                          "fig3.10-capsella-stochastic.l",
+                          "fig3.10-capsella-table.l",
+                          "sec3.3.4-compound-raceme.l",
+                          "sec3.3.4-compound-raceme-terminal.l",
+                          "fig3.14a-acropetal-signal.l",
+                          "fig3.14b-basipetal-flowering.l",
+                          "fig3.15-mycelis-muralis.l",
+                          "fig3.16-stochastic-bush.l",
+                          "fig3.17-flower-field.l",
+                          "fig6.5-bag-of-candies.l",
+                          "siggraph-a-branching-everywhere.l",
+                          "siggraph-a-prime-branching-everywhere.l",
+                          "siggraph-b-subapical.l",
+                          "siggraph-c-prime-acropetal-signal.l",
+                          "siggraph-d-basipetal-signal.l",
+                          "siggraph-raceme-elongating-internodes.l",
+                          "siggraph-lychnis-coronaria.l",
+                          "siggraph-flower-field-stochastic-internodes.l",
+                          "lecture-parametric-plant.l",
+                          "lecture-stochastic-parametric-context.l",
+                          "lecture-monopodial-branching.l",
+                          "lecture-dichotomic-branching.l",
+                          "honda-monopodial-tree.l",
+                          "aono-kunii-sympodial-tree.l",
+                          "abop-ternary-branching-tree.l"}) {
         expectDrawsAndIsSmall(f);
     }
 }
@@ -170,8 +191,7 @@ TEST(Models, SiggraphRacemeWithElongatingInternodesPrintedSequence) {
 
 TEST(Models, FernHasNineFrondsGrowingSubapically) {
     LSystem ls = example("fig3.8-fern.l");
-    std::string frond0 = "[A]", frond1 = "[I(0)[B]A]",
-                frond2 = "[I(1)[I(0)[L(0)][L(0)]B]I(0)[B]A]";
+    std::string frond0 = "[A]", frond1 = "[I(0)[B]A]", frond2 = "[I(1)[I(0)[L(0)][L(0)]B]I(0)[B]A]";
     auto times9 = [](const std::string& s) {
         std::string r;
         for (int i = 0; i < 9; ++i) r += s;
@@ -183,7 +203,7 @@ TEST(Models, FernHasNineFrondsGrowingSubapically) {
     // Leaves and first-order branches: the oldest at the base, the most leaves there.
     ModuleString s = derive(ls, 5);
     EXPECT_EQ(countOf(s, sym(ls, "A")), 9u);
-    EXPECT_EQ(countOf(s, sym(ls, "B")), 9u * 5);               // 5 first-order apices per frond
+    EXPECT_EQ(countOf(s, sym(ls, "B")), 9u * 5);  // 5 first-order apices per frond
     EXPECT_EQ(countOf(s, sym(ls, "L")), 9u * 2 * (4 + 3 + 2 + 1));  // 2 leaves per node
 }
 
@@ -208,8 +228,7 @@ TEST(Models, LychnisLateralApicesBranchAfterEightAndFourSteps) {
     };
     EXPECT_EQ(branchStep(0), 8);
     EXPECT_EQ(branchStep(1), 4);
-    EXPECT_EQ(stripped(ls, 9),
-              "I[I[A(0)][A(4)]IF(0)][I[A(4)][I[A(0)][A(4)]IF(0)]IF(4)]IF(8)");
+    EXPECT_EQ(stripped(ls, 9), "I[I[A(0)][A(4)]IF(0)][I[A(4)][I[A(0)][A(4)]IF(0)]IF(4)]IF(8)");
     // The SIGGRAPH version has leaves and elongating internodes, same delays.
     LSystem sg = example("siggraph-lychnis-coronaria.l");
     EXPECT_EQ(stripped(sg, 1), "I(0)[L(0)][L(0)][A(0)][A(4)]I(0)F(0)");
@@ -253,8 +272,7 @@ TEST(Models, CapsellaDelaySwitchesAfterCountingTheLeaves) {
     EXPECT_EQ(str(ls, 0), "A(0)");
     EXPECT_EQ(str(ls, 2), "I[L(1)]I[L(0)]A(2)");
     EXPECT_EQ(str(ls, 6), "I[L(5)]I[L(4)]I[L(3)]I[L(2)]I[L(1)]I[L(0)]B");
-    EXPECT_EQ(str(ls, 8),
-              "I[L(7)]I[L(6)]I[L(5)]I[L(4)]I[L(3)]I[L(2)]I[IF(1)]I[IF(0)]B");
+    EXPECT_EQ(str(ls, 8), "I[L(7)]I[L(6)]I[L(5)]I[L(4)]I[L(3)]I[L(2)]I[IF(1)]I[IF(0)]B");
 }
 
 TEST(Models, CapsellaTableSwitchesAtTheScheduledStep) {
@@ -303,9 +321,12 @@ std::set<int> flowerAxisOrders(const ModuleString& s) {
     int depth = 0;
     for (std::size_t i = 0; i < s.size(); ++i) {
         Symbol x = s.symbol(i);
-        if (x == '[') ++depth;
-        else if (x == ']') --depth;
-        else if (x == 'F') orders.insert(depth - 1);
+        if (x == '[')
+            ++depth;
+        else if (x == ']')
+            --depth;
+        else if (x == 'F')
+            orders.insert(depth - 1);
     }
     return orders;
 }
@@ -547,9 +568,12 @@ TEST(Models, MycelisSignalsReleaseAndFlowerTheLateralsFromTheTopDown) {
     ModuleString s = d.current();
     int depth = 0;
     for (std::size_t i = 0; i < s.size(); ++i) {
-        if (s.symbol(i) == '[') ++depth;
-        else if (s.symbol(i) == ']') --depth;
-        else if (s.symbol(i) == F) depths.insert(depth);
+        if (s.symbol(i) == '[')
+            ++depth;
+        else if (s.symbol(i) == ']')
+            --depth;
+        else if (s.symbol(i) == F)
+            depths.insert(depth);
     }
     EXPECT_TRUE(depths.count(0) && depths.count(1) && depths.count(2));
 }
@@ -622,14 +646,16 @@ TEST(Models, SiggraphSubapicalGrowth) {
     EXPECT_EQ(stripped(b, 1), "S[A]S[A]A");
     EXPECT_EQ(stripped(b, 2), "SS[S[A]S[A]A]SS[S[A]S[A]A]S[A]S[A]A");
     // the paper's (b) itself, without the turns
-    LSystem plain = graftal::testing::parse(
-        "Lsystem: 1\naxiom: A\nA --> S[A]S[A]A\nS --> SS\nendlsystem\n");
-    for (int n = 0; n <= 5; ++n) EXPECT_EQ(stripped(b, n), graftal::testing::derived(plain, n)) << n;
+    LSystem plain =
+        graftal::testing::parse("Lsystem: 1\naxiom: A\nA --> S[A]S[A]A\nS --> SS\nendlsystem\n");
+    for (int n = 0; n <= 5; ++n)
+        EXPECT_EQ(stripped(b, n), graftal::testing::derived(plain, n)) << n;
 }
 
 TEST(Models, SiggraphSignalPropagation) {
     // (c), the topological system (seed 000, 3.5.1; lost from seed 002's text)
-    LSystem c = graftal::testing::parse("Lsystem: 1\naxiom: J[I]I[I]I[I]I\nJ < I --> J\nendlsystem\n");
+    LSystem c =
+        graftal::testing::parse("Lsystem: 1\naxiom: J[I]I[I]I[I]I\nJ < I --> J\nendlsystem\n");
     EXPECT_EQ(graftal::testing::derived(c, 1), "J[J]J[I]I[I]I");
     EXPECT_EQ(graftal::testing::derived(c, 2), "J[J]J[J]J[I]I");
     EXPECT_EQ(graftal::testing::derived(c, 3), "J[J]J[J]J[J]J");
@@ -646,7 +672,8 @@ TEST(Models, SiggraphSignalPropagation) {
     EXPECT_EQ(stripped(d, 1), "I[I]I[I]J[I]J");
     EXPECT_EQ(stripped(d, 2), "I[I]J[I]J[I]J");
     EXPECT_EQ(stripped(d, 3), "J[I]J[I]J[I]J");
-    LSystem dplain = graftal::testing::parse("Lsystem: 1\naxiom: I[I]I[I]I[I]J\nI > J --> J\nendlsystem\n");
+    LSystem dplain =
+        graftal::testing::parse("Lsystem: 1\naxiom: I[I]I[I]I[I]J\nI > J --> J\nendlsystem\n");
     for (int n = 0; n <= 3; ++n) EXPECT_EQ(stripped(d, n), graftal::testing::derived(dplain, n));
 }
 

@@ -26,9 +26,13 @@ LSystem example3d(const std::string& name) {
     return loadLSystem(fs::path(GRAFTAL_EXAMPLES_DIR) / name);
 }
 
-Scene sceneOf(const LSystem& ls) { return interpret(ls, applyHomomorphism(ls, derive(ls))); }
+Scene sceneOf(const LSystem& ls) {
+    return interpret(ls, applyHomomorphism(ls, derive(ls)));
+}
 
-Scene sceneOf(const std::string& name) { return sceneOf(example3d(name)); }
+Scene sceneOf(const std::string& name) {
+    return sceneOf(example3d(name));
+}
 
 const std::vector<std::string> kExamples3d = {
     "fig2.13-paper-tape-koch.l",
@@ -64,7 +68,8 @@ struct Shape {
 Shape shapeOf(const Scene& s) {
     std::vector<bool> continued(s.segments.size(), false);
     for (const Segment& seg : s.segments)
-        if (seg.previous != kNoSegment && seg.previous < continued.size()) continued[seg.previous] = true;
+        if (seg.previous != kNoSegment && seg.previous < continued.size())
+            continued[seg.previous] = true;
     Shape out;
     double sum = 0;
     int n = 0;
@@ -169,15 +174,18 @@ TEST(Models3d, BushRenderIsInsideTheFrame) {
     std::vector<unsigned char> px = renderRaytracedPixels(mesh, o);
     ASSERT_EQ(px.size(), 200u * 200u * 3u);
     auto isPlant = [&](int x, int y) {
-        const unsigned char* p = &px[(static_cast<std::size_t>(y) * 200 + static_cast<std::size_t>(x)) * 3];
+        const unsigned char* p =
+            &px[(static_cast<std::size_t>(y) * 200 + static_cast<std::size_t>(x)) * 3];
         return p[0] < 240 || p[1] < 240 || p[2] < 240;  // background is white
     };
     int inside = 0, border = 0;
     for (int y = 0; y < 200; ++y)
         for (int x = 0; x < 200; ++x) {
             if (!isPlant(x, y)) continue;
-            if (x == 0 || y == 0 || x == 199 || y == 199) ++border;
-            else ++inside;
+            if (x == 0 || y == 0 || x == 199 || y == 199)
+                ++border;
+            else
+                ++inside;
         }
     EXPECT_GT(inside, 200 * 200 / 50);  // the plant covers a good part of the picture
     EXPECT_EQ(border, 0);               // and does not touch the frame

@@ -95,7 +95,8 @@ TEST(Parser, ParametricProductionsCompile) {
 TEST(Parser, CommandLineDefinesWin) {
     ParseOptions o;
     o.defines["N"] = "7";
-    LSystem ls = parseLSystem("#define N 3\nLsystem: 1\nderivation length: N\naxiom: F\nendlsystem\n", o);
+    LSystem ls =
+        parseLSystem("#define N 3\nLsystem: 1\nderivation length: N\naxiom: F\nendlsystem\n", o);
     EXPECT_EQ(ls.derivationLength, 7);
 }
 
@@ -137,8 +138,9 @@ TEST(ParserErrors, MissingAxiom) {
 }
 
 TEST(ParserErrors, BadValues) {
-    EXPECT_EQ(parseError("Lsystem: 1\nderivation length: -3\naxiom: F\n"),
-              "test.l:2:20: error: derivation length must be a whole number from 0 to 1000000, not -3");
+    EXPECT_EQ(
+        parseError("Lsystem: 1\nderivation length: -3\naxiom: F\n"),
+        "test.l:2:20: error: derivation length must be a whole number from 0 to 1000000, not -3");
     EXPECT_EQ(parseError("Lsystem: 1\nangle factor: 0\naxiom: F\n"),
               "test.l:2:15: error: angle factor must be positive (delta = 360 / factor)");
     EXPECT_EQ(parseError("Lsystem: 1\nderivation length: M\naxiom: F\n"),
@@ -157,12 +159,15 @@ TEST(ParserErrors, ParametersAndExpressions) {
               "test.l:3:12: error: unknown name 'y' (not a parameter of this production)");
     EXPECT_EQ(parseError("Lsystem: 1\naxiom: A(1\n"),
               "test.l:2:9: error: unclosed '(': expected ')' to end the parameter list");
-    EXPECT_EQ(parseError("Lsystem: 1\naxiom: A\nA(1) --> B\n"),
-              "test.l:3:3: error: a predecessor names its parameters (e.g. A(x,y)); '1' is not a name");
+    EXPECT_EQ(
+        parseError("Lsystem: 1\naxiom: A\nA(1) --> B\n"),
+        "test.l:3:3: error: a predecessor names its parameters (e.g. A(x,y)); '1' is not a name");
 }
 
 TEST(ParserErrors, NonAsciiModule) {
-    EXPECT_EQ(parseError("Lsystem: 1\naxiom: \xCF\x89\n").rfind("test.l:2:8: error: unexpected character '\xCF\x89'", 0), 0u);
+    EXPECT_EQ(parseError("Lsystem: 1\naxiom: \xCF\x89\n")
+                  .rfind("test.l:2:8: error: unexpected character '\xCF\x89'", 0),
+              0u);
 }
 
 TEST(ParserErrors, ReportsSeveralErrorsInOnePass) {

@@ -7,7 +7,8 @@ using graftal::testing::derived;
 using graftal::testing::parse;
 
 TEST(QueryModules, PositionAndOrientationAreWrittenIntoParameters) {
-    LSystem ls = parse("Lsystem: 1\nangle increment: 90\naxiom: F?P(0,0)+F?H(0,0)[F?P(9,9,9)]\nendlsystem\n");
+    LSystem ls = parse(
+        "Lsystem: 1\nangle increment: 90\naxiom: F?P(0,0)+F?H(0,0)[F?P(9,9,9)]\nendlsystem\n");
     EXPECT_EQ(derived(ls, 0), "F?P(0,1)+F?H(-1,0)[F?P(-2,1,0)]");
 }
 
@@ -21,15 +22,14 @@ TEST(QueryModules, AnswerAfterEveryStepSoProductionsCanReadThem) {
 }
 
 TEST(QueryModules, SeeTheStringAfterTheHomomorphism) {
-    LSystem ls = parse(
-        "Lsystem: 1\naxiom: II?P(0,0)\nhomomorphism\nI --> F(2)\nendlsystem\n");
+    LSystem ls = parse("Lsystem: 1\naxiom: II?P(0,0)\nhomomorphism\nI --> F(2)\nendlsystem\n");
     EXPECT_EQ(derived(ls, 0), "II?P(0,4)");
 }
 
 namespace {
 
 class RecordingEnvironment : public Environment {
-public:
+  public:
     std::string name() const override { return "recording"; }
     void respond(int step, std::span<CommunicationRequest> requests) override {
         for (auto& r : requests) {

@@ -74,8 +74,7 @@ TEST(Stochastic, ZeroTotalWeightLeavesTheModule) {
 }
 
 TEST(Stochastic, RandomFunctionsAreReproducible) {
-    LSystem ls = parse(
-        "Lsystem: 1\naxiom: A(0)\nA(x) --> A(ran(10))B(nran(5, 1))\nendlsystem\n");
+    LSystem ls = parse("Lsystem: 1\naxiom: A(0)\nA(x) --> A(ran(10))B(nran(5, 1))\nendlsystem\n");
     std::string a = deriveWith(ls, 6, 1).toString(ls.symbols);
     EXPECT_EQ(a, deriveWith(ls, 6, 1, 4).toString(ls.symbols));
     EXPECT_NE(a, deriveWith(ls, 6, 2).toString(ls.symbols));

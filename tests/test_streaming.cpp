@@ -13,7 +13,7 @@ using graftal::testing::parse;
 namespace {
 
 class Collect : public ModuleSink {
-public:
+  public:
     ModuleString s;
     void module(Symbol sym, std::span<const double> p) override { s.push(sym, p); }
 };
@@ -23,7 +23,8 @@ const char* kClasses[] = {
     "Lsystem: 1\nangle increment: 20\naxiom: X\nX --> F[+X]F[-X]+X\nF --> FF\nendlsystem\n",
     "Lsystem: 1\nseed: 9\nangle increment: 25\naxiom: F\nF --> F[+F]F[-F]F : 0.33\n"
     "F --> F[+F]F : 0.33\nF --> F[-F]F : 0.34\nendlsystem\n",
-    "Lsystem: 1\naxiom: A(1,0)\nA(l,a) : l < 40 --> F(l)[+(a+30)A(l*0.7,a+5)]-(10)A(l*0.9,ran(20))\n"
+    "Lsystem: 1\naxiom: A(1,0)\nA(l,a) : l < 40 --> "
+    "F(l)[+(a+30)A(l*0.7,a+5)]-(10)A(l*0.9,ran(20))\n"
     "endlsystem\n",
     "Lsystem: 1\naxiom: A\ntable: v\nA --> I[L]A\ntable: f\nA --> I[IF]A\nI --> FI\n"
     "table schedule: v 3, f\nendlsystem\n",
@@ -99,10 +100,12 @@ TEST(Streaming, StreamedPngEqualsTheMaterialisedPng) {
 TEST(Streaming, MemoryLimitRefusesAndStreamSucceeds) {
     using graftal::testing::runGraftal;
     graftal::testing::TempDir t;
-    auto f = t.write("big.l", "Lsystem: 1\nangle factor: 4\naxiom: F+F+F+F\nF --> F+F-F-FF+F+F-F\nendlsystem\n");
+    auto f = t.write(
+        "big.l", "Lsystem: 1\nangle factor: 4\naxiom: F+F+F+F\nF --> F+F-F-FF+F+F-F\nendlsystem\n");
     // A context-sensitive twin cannot stream: refused before allocating.
-    auto g = t.write("ctx.l", "Lsystem: 1\nignore: +-\naxiom: F+F+F+F\nF > F --> F+F-F-FF+F+F-F\n"
-                              "endlsystem\n");
+    auto g = t.write("ctx.l",
+                     "Lsystem: 1\nignore: +-\naxiom: F+F+F+F\nF > F --> F+F-F-FF+F+F-F\n"
+                     "endlsystem\n");
     auto r = runGraftal("stats " + g.string() + " -n 7 --memory-limit 8M");
     EXPECT_NE(r.status, 0);
     EXPECT_NE(r.err.find("would make a string of"), std::string::npos) << r.err;

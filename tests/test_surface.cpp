@@ -80,7 +80,7 @@ double length(const Vec3& v) {
 
 // A directory of its own under the system temporary directory, removed afterwards.
 class TempDir {
-public:
+  public:
     TempDir() {
         static int counter = 0;
         path_ = fs::temp_directory_path() / ("graftal-surface-test-" + std::to_string(::getpid()) +
@@ -93,7 +93,7 @@ public:
     }
     const fs::path& path() const { return path_; }
 
-private:
+  private:
     fs::path path_;
 };
 

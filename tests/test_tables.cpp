@@ -52,8 +52,9 @@ TEST(Tables, ScheduleCountsMayBeExpressions) {
 }
 
 TEST(Tables, ErrorsNameTheLine) {
-    EXPECT_EQ(parseError("Lsystem: 1\naxiom: X\ntable: a\nX --> Y\ntable schedule: b 2\nendlsystem\n"),
-              "test.l:5:17: error: unknown table 'b' (tables: a)");
+    EXPECT_EQ(
+        parseError("Lsystem: 1\naxiom: X\ntable: a\nX --> Y\ntable schedule: b 2\nendlsystem\n"),
+        "test.l:5:17: error: unknown table 'b' (tables: a)");
     EXPECT_NE(parseError("Lsystem: 1\naxiom: X\ntable: a\nX --> Y\nendlsystem\n")
                   .find("has tables but no 'table schedule:'"),
               std::string::npos);

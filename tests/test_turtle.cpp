@@ -51,7 +51,8 @@ TEST(Turtle, BracketsRestorePositionAndHeading) {
 }
 
 TEST(Turtle, QuadraticKochIslandStaysASquare) {
-    Scene s = draw("Lsystem: 1\nangle factor: 4\naxiom: F+F+F+F\nF --> F+F-F-FF+F+F-F\nendlsystem\n", 2);
+    Scene s =
+        draw("Lsystem: 1\nangle factor: 4\naxiom: F+F+F+F\nF --> F+F-F-FF+F+F-F\nendlsystem\n", 2);
     EXPECT_EQ(s.segments.size(), 4u * 64);
     Bounds b = s.bounds();
     // Each side of length 16 (step 1): the island spans the square plus the bumps.

@@ -16,8 +16,8 @@ struct Frame {
 
 // The frame the turtle has when it reaches the ?H ?L ?U queries at the end of `modules`.
 Frame frameAfter(const std::string& modules, double angle = 90) {
-    LSystem ls = parse("Lsystem: 1\nangle increment: " + std::to_string(angle) + "\naxiom: " +
-                       modules + "?H(0,0,0)?L(0,0,0)?U(0,0,0)\nendlsystem\n");
+    LSystem ls = parse("Lsystem: 1\nangle increment: " + std::to_string(angle) +
+                       "\naxiom: " + modules + "?H(0,0,0)?L(0,0,0)?U(0,0,0)\nendlsystem\n");
     ModuleString s = derive(ls, 0);
     auto v = [&](std::size_t i) {
         auto p = s.params(i);
@@ -33,7 +33,9 @@ void expectVec(const Vec3& a, const Vec3& b, double tol = 1e-12) {
     EXPECT_NEAR(a.z, b.z, tol);
 }
 
-double dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+double dot(Vec3 a, Vec3 b) {
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 Vec3 cross(Vec3 a, Vec3 b) {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
@@ -114,8 +116,9 @@ TEST(Turtle3D, FrameStaysOrthonormalAfterAMillionRotations) {
 
 TEST(Turtle3D, TropismBendsTowardTheVectorByElasticityTimesSine) {
     // Heading up, T pointing right: after one segment H turns toward T by e·|H×T| = e rad.
-    LSystem ls = parse("Lsystem: 1\ntropism direction: 1,0,0\ntropism elasticity: 0.2\n"
-                       "axiom: F?H(0,0,0)\nendlsystem\n");
+    LSystem ls = parse(
+        "Lsystem: 1\ntropism direction: 1,0,0\ntropism elasticity: 0.2\n"
+        "axiom: F?H(0,0,0)\nendlsystem\n");
     ModuleString s = derive(ls, 0);
     auto h = s.params(1);
     EXPECT_NEAR(h[0], std::sin(0.2), 1e-12);
@@ -123,14 +126,16 @@ TEST(Turtle3D, TropismBendsTowardTheVectorByElasticityTimesSine) {
 }
 
 TEST(Turtle3D, NegativeElasticityBendsAway) {
-    LSystem ls = parse("Lsystem: 1\ntropism direction: 1,0,0\ntropism elasticity: -0.2\n"
-                       "axiom: F?H(0,0,0)\nendlsystem\n");
+    LSystem ls = parse(
+        "Lsystem: 1\ntropism direction: 1,0,0\ntropism elasticity: -0.2\n"
+        "axiom: F?H(0,0,0)\nendlsystem\n");
     EXPECT_NEAR(derive(ls, 0).params(1)[0], -std::sin(0.2), 1e-12);
 }
 
 TEST(Turtle3D, TropismVanishesAlongTheVector) {
-    LSystem ls = parse("Lsystem: 1\ntropism direction: 0,1,0\ntropism elasticity: 0.5\n"
-                       "axiom: FFF?H(0,0,0)\nendlsystem\n");
+    LSystem ls = parse(
+        "Lsystem: 1\ntropism direction: 0,1,0\ntropism elasticity: 0.5\n"
+        "axiom: FFF?H(0,0,0)\nendlsystem\n");
     ModuleString s = derive(ls, 0);
     auto h = s.params(3);
     EXPECT_NEAR(h[0], 0, 1e-15);
@@ -149,7 +154,8 @@ TEST(Turtle3D, ConsecutiveSegmentsOfAnAxisAreLinked) {
 }
 
 TEST(Turtle3D, WidthAttributes) {
-    LSystem ls = parse("Lsystem: 1\nline width: 2\nwidth factor: 0.5\naxiom: F!F#F!(0.3)F\nendlsystem\n");
+    LSystem ls =
+        parse("Lsystem: 1\nline width: 2\nwidth factor: 0.5\naxiom: F!F#F!(0.3)F\nendlsystem\n");
     Scene s = interpret(ls, derive(ls, 0));
     ASSERT_EQ(s.segments.size(), 4u);
     EXPECT_FLOAT_EQ(s.segments[0].width, 2);
@@ -198,6 +204,7 @@ TEST(ViewSettings, BadValuesAreRejectedWithTheirPlace) {
               "test.l:2:16: error: field of view must be between 0 and 180 degrees");
     EXPECT_EQ(parseError("Lsystem: 1\nlight direction: 0 0 0\naxiom: F\n"),
               "test.l:2:18: error: the light direction must not be zero");
-    EXPECT_EQ(parseError("Lsystem: 1\nsurface: l\naxiom: F\n"),
-              "test.l:2:10: error: expected 'surface: NAME FILE [SCALE]', e.g. 'surface: l leaf.s 0.5'");
+    EXPECT_EQ(
+        parseError("Lsystem: 1\nsurface: l\naxiom: F\n"),
+        "test.l:2:10: error: expected 'surface: NAME FILE [SCALE]', e.g. 'surface: l leaf.s 0.5'");
 }

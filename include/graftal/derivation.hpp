@@ -25,7 +25,7 @@ struct DerivationOptions {
 };
 
 class Derivation {
-public:
+  public:
     Derivation(const LSystem& lsystem, DerivationOptions options = {});
     ~Derivation();
     Derivation(const Derivation&) = delete;
@@ -40,7 +40,7 @@ public:
     const ModuleString& current() const { return *current_; }
     ModuleString take() { return std::move(*current_); }
 
-private:
+  private:
     void afterStep(int stepNumber);
     void decompose(int stepNumber);
     void answerQueries(int stepNumber);

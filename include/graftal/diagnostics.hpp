@@ -32,7 +32,7 @@ std::ostream& operator<<(std::ostream& os, const Diagnostic& d);
 
 // Collects diagnostics so that a parser can report several problems in one pass.
 class DiagnosticList {
-public:
+  public:
     void error(SourceLocation loc, std::string message);
     void warning(SourceLocation loc, std::string message);
     void add(Diagnostic d) { items_.push_back(std::move(d)); }
@@ -41,20 +41,20 @@ public:
     const std::vector<Diagnostic>& items() const { return items_; }
     std::string toString() const;
 
-private:
+  private:
     std::vector<Diagnostic> items_;
 };
 
 // The one exception family of the library. It carries every diagnostic that led to it.
 class Error : public std::runtime_error {
-public:
+  public:
     explicit Error(Diagnostic d);
     explicit Error(std::vector<Diagnostic> ds);
     Error(SourceLocation loc, const std::string& message);
 
     const std::vector<Diagnostic>& diagnostics() const { return diagnostics_; }
 
-private:
+  private:
     std::vector<Diagnostic> diagnostics_;
 };
 

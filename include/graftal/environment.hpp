@@ -31,7 +31,7 @@ struct CommunicationRequest {
 // Called after every derivation step (and once for the axiom) with all ?E modules of the
 // string, in string order. Implementations must be deterministic.
 class Environment {
-public:
+  public:
     virtual ~Environment() = default;
     virtual std::string name() const = 0;
     virtual void respond(int step, std::span<CommunicationRequest> requests) = 0;

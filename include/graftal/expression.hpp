@@ -22,16 +22,39 @@ struct EvalContext {
 };
 
 class Expression {
-public:
+  public:
     enum class Op : std::uint8_t {
-        Const, Var, Neg, Not, Add, Sub, Mul, Div, Mod, Pow,
-        Lt, Le, Gt, Ge, Eq, Ne, And, Or,
-        Call1, Call2, Ran, Nran, JumpIfFalse, JumpIfTrue, Jump, Pop,
+        Const,
+        Var,
+        Neg,
+        Not,
+        Add,
+        Sub,
+        Mul,
+        Div,
+        Mod,
+        Pow,
+        Lt,
+        Le,
+        Gt,
+        Ge,
+        Eq,
+        Ne,
+        And,
+        Or,
+        Call1,
+        Call2,
+        Ran,
+        Nran,
+        JumpIfFalse,
+        JumpIfTrue,
+        Jump,
+        Pop,
     };
     struct Instr {
         Op op;
-        std::uint8_t fn = 0;     // function id for Call1/Call2
-        std::uint32_t arg = 0;   // constant index, variable slot, or jump target
+        std::uint8_t fn = 0;    // function id for Call1/Call2
+        std::uint32_t arg = 0;  // constant index, variable slot, or jump target
     };
 
     Expression() = default;
@@ -48,7 +71,7 @@ public:
     const SourceLocation& location() const { return location_; }
     void print(std::ostream& os) const { os << text_; }
 
-private:
+  private:
     friend class ExpressionCompiler;
     std::vector<Instr> code_;
     std::vector<double> constants_;
@@ -62,7 +85,7 @@ std::ostream& operator<<(std::ostream& os, const Expression& e);
 
 // Names an expression may use: formal parameters (slots) and #define constants.
 struct ExpressionScope {
-    std::vector<std::string> variables;               // slot i is variables[i]
+    std::vector<std::string> variables;                           // slot i is variables[i]
     const std::map<std::string, std::string>* defines = nullptr;  // NAME -> expression text
 };
 

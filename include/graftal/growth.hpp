@@ -13,7 +13,7 @@ namespace graftal {
 // An unsigned integer of any size: counts of a D0L system grow exponentially and pass
 // 2^64 after a few dozen steps.
 class BigCount {
-public:
+  public:
     BigCount() = default;
     explicit BigCount(std::uint64_t v);
 
@@ -22,19 +22,19 @@ public:
     friend bool operator==(const BigCount&, const BigCount&) = default;
     friend bool operator<(const BigCount& a, const BigCount& b);
 
-    std::string toString() const;     // exact decimal
+    std::string toString() const;  // exact decimal
     double toDouble() const;
     std::optional<std::uint64_t> toUint64() const;
 
-private:
+  private:
     std::vector<std::uint32_t> limbs_;  // base 10^9, least significant first
 };
 
 struct GrowthPrediction {
-    bool exact = false;                 // deterministic context-free: counts are exact
-    bool expected = false;              // stochastic: counts are expected values
-    std::string reason;                 // why nothing can be predicted (both flags false)
-    std::vector<BigCount> modules;      // exact count per step 0..n (exact only)
+    bool exact = false;                   // deterministic context-free: counts are exact
+    bool expected = false;                // stochastic: counts are expected values
+    std::string reason;                   // why nothing can be predicted (both flags false)
+    std::vector<BigCount> modules;        // exact count per step 0..n (exact only)
     std::vector<double> expectedModules;  // expected count per step 0..n (exact or expected)
     // Per symbol counts at the last step (exact only), indexed by symbol id.
     std::vector<BigCount> symbolsAtEnd;

@@ -23,20 +23,20 @@ enum class LineStyle { Lines, Cylinders };
 
 // A predefined surface a file names: `surface: l leaf.s 0.5` places leaf.s at `~l`.
 struct SurfaceDeclaration {
-    std::string name;      // what follows ~ in module strings
-    std::string file;      // a .s file, relative to the L-system file, or a built-in name
+    std::string name;  // what follows ~ in module strings
+    std::string file;  // a .s file, relative to the L-system file, or a built-in name
     double scale = 1;
     SourceLocation location;
 };
 
 struct ViewSettings {
-    double angleDegrees = 90;      // δ, the turn of + and -
-    double stepLength = 1;         // length of F and f
-    double initialHeading = 0;     // degrees counter-clockwise from up (+y)
-    double scaleFactor = 100;      // pfg's picture size in percent of the window
-    bool clockwisePlus = false;    // pfg data files: + turns right on screen
-    double initialWidth = 0.1;     // stem diameter before any ! or #, in model units
-    double widthFactor = 0.7;      // ! multiplies the width by this, # divides by it
+    double angleDegrees = 90;                    // δ, the turn of + and -
+    double stepLength = 1;                       // length of F and f
+    double initialHeading = 0;                   // degrees counter-clockwise from up (+y)
+    double scaleFactor = 100;                    // pfg's picture size in percent of the window
+    bool clockwisePlus = false;                  // pfg data files: + turns right on screen
+    double initialWidth = 0.1;                   // stem diameter before any ! or #, in model units
+    double widthFactor = 0.7;                    // ! multiplies the width by this, # divides by it
     LineStyle lineStyle = LineStyle::Cylinders;  // how 3D outputs draw segments
     // Tropism (LSFP ch. 3.1): after each segment H turns toward `tropism` by e·|H × T|.
     std::optional<Vec3> tropism;
@@ -46,8 +46,8 @@ struct ViewSettings {
     std::optional<double> fieldOfView;  // degrees
     bool parallelProjection = false;
     std::optional<Rgb> background;
-    std::string colorMap;               // a cpfg .map file, relative to the L-system file
-    int splineSubdivisions = 0;         // > 0: draw turtle paths as B-splines (LSFP Fig 2.10)
+    std::string colorMap;        // a cpfg .map file, relative to the L-system file
+    int splineSubdivisions = 0;  // > 0: draw turtle paths as B-splines (LSFP Fig 2.10)
     std::vector<SurfaceDeclaration> surfaces;
 };
 
@@ -74,8 +74,8 @@ struct Production {
     std::vector<SuccessorModule> successor;  // empty for *
     std::optional<Expression> probability;
     SourceLocation location;
-    int slotCount = 0;                       // formal parameters bound, in all three parts
-    int table = -1;                          // index into LSystem::tableNames; -1: every table
+    int slotCount = 0;  // formal parameters bound, in all three parts
+    int table = -1;     // index into LSystem::tableNames; -1: every table
 
     bool hasContext() const { return !left.empty() || !right.empty(); }
     bool isParametric() const;
@@ -89,9 +89,9 @@ struct ScheduleEntry {
 };
 
 class LSystem {
-public:
-    std::string name;                 // the `Lsystem:` label (the file name if none)
-    std::string file;                 // where it was read from: used in error locations
+  public:
+    std::string name;  // the `Lsystem:` label (the file name if none)
+    std::string file;  // where it was read from: used in error locations
     SymbolTable symbols;
     ModuleString axiom;
     std::vector<Production> productions;
@@ -109,10 +109,10 @@ public:
     std::vector<bool> ignored = std::vector<bool>(kMaxSymbols, false);
     std::uint64_t seed = 0;
     ViewSettings view;
-    bool legacyPfg = false;           // read as a pfg data file (no Lsystem: header)
+    bool legacyPfg = false;                    // read as a pfg data file (no Lsystem: header)
     std::vector<EnvironmentLine> environment;  // `environment:` lines, in file order
     std::map<std::string, std::string> defines;
-    std::vector<Diagnostic> warnings; // what the parser noticed but accepted
+    std::vector<Diagnostic> warnings;  // what the parser noticed but accepted
 
     // The table used by derivation step `step` (1-based); 0 when there are no tables.
     int tableForStep(int step) const;

@@ -23,25 +23,25 @@ struct Vec3f {
 // `palette` (writers group triangles by colour into materials).
 struct Mesh {
     std::vector<Vec3f> positions;
-    std::vector<Vec3f> normals;               // one per position, unit length
-    std::vector<std::uint32_t> indices;       // 3 per triangle, counter-clockwise = front
-    std::vector<std::uint16_t> triangleColor; // one per triangle
+    std::vector<Vec3f> normals;                // one per position, unit length
+    std::vector<std::uint32_t> indices;        // 3 per triangle, counter-clockwise = front
+    std::vector<std::uint16_t> triangleColor;  // one per triangle
     std::vector<Rgb> palette;
 
     std::size_t triangleCount() const { return triangleColor.size(); }
     Bounds bounds() const;
-    void append(const Mesh& other);  // palettes must agree (the scene's)
+    void append(const Mesh& other);      // palettes must agree (the scene's)
     void print(std::ostream& os) const;  // counts and bounds
 };
 
 std::ostream& operator<<(std::ostream& os, const Mesh& m);
 
 struct MeshOptions {
-    int tubeSides = 8;           // cross-section vertices of a cylinder
-    double minimumRadius = 0;    // thinner stems are widened to this (model units)
-    double widthScale = 1;       // cylinder diameter = segment width * widthScale
-    int surfaceDivisions = 8;    // per patch side when tessellating bicubic patches
-    bool cylinders = true;       // false: segments are left out (polygons and surfaces only)
+    int tubeSides = 8;         // cross-section vertices of a cylinder
+    double minimumRadius = 0;  // thinner stems are widened to this (model units)
+    double widthScale = 1;     // cylinder diameter = segment width * widthScale
+    int surfaceDivisions = 8;  // per patch side when tessellating bicubic patches
+    bool cylinders = true;     // false: segments are left out (polygons and surfaces only)
 };
 
 // Builds the mesh of a scene. Surfaces named in the scene are looked up in `surfaces`

@@ -5,12 +5,12 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <ostream>
 #include <span>
 #include <string>
 #include <string_view>
 #include <unordered_map>
-#include <memory>
 #include <utility>
 #include <vector>
 
@@ -60,7 +60,7 @@ inline constexpr Symbol kFirstDeclaredSymbol = 133;  // the first name a file de
 inline constexpr std::size_t kMaxSymbols = 65536;
 
 class SymbolTable {
-public:
+  public:
     SymbolTable();
 
     // Declares a multi-letter name (or returns the existing id).
@@ -72,14 +72,14 @@ public:
     // Declared multi-letter names, longest first: the order the tokenizer tries them in.
     const std::vector<Symbol>& namesLongestFirst() const { return byLength_; }
 
-private:
+  private:
     std::vector<std::string> names_;
     std::unordered_map<std::string, Symbol> ids_;
     std::vector<Symbol> byLength_;
 };
 
 class ModuleString {
-public:
+  public:
     using SymbolBuffer = std::vector<Symbol, UninitializedAllocator<Symbol>>;
     using OffsetBuffer = std::vector<std::uint32_t, UninitializedAllocator<std::uint32_t>>;
     using ParamBuffer = std::vector<double, UninitializedAllocator<double>>;
@@ -118,7 +118,7 @@ public:
 
     friend bool operator==(const ModuleString&, const ModuleString&) = default;
 
-private:
+  private:
     SymbolBuffer symbols_;
     OffsetBuffer paramStart_;  // size()+1 offsets into params_, or empty
     ParamBuffer params_;

@@ -5,11 +5,11 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
-#include <span>
-#include <vector>
 #include <optional>
 #include <ostream>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "graftal/scene.hpp"
 
@@ -20,13 +20,13 @@ struct Mesh;
 namespace graftal {
 
 struct RenderOptions {
-    int width = 800;   // pixels (PNG) or points (PDF, SVG user units)
+    int width = 800;  // pixels (PNG) or points (PDF, SVG user units)
     int height = 800;
-    double margin = 0.05;       // fraction of the smaller side left free around the picture
-    double lineWidth = 0;       // pixels for a width-1 segment; 0 picks one from the picture
+    double margin = 0.05;  // fraction of the smaller side left free around the picture
+    double lineWidth = 0;  // pixels for a width-1 segment; 0 picks one from the picture
     Rgb background{1, 1, 1};
-    std::optional<Rgb> lineColor;   // overrides the palette for lines when set
-    std::optional<Rgb> fillColor;   // overrides the palette for polygons when set
+    std::optional<Rgb> lineColor;  // overrides the palette for lines when set
+    std::optional<Rgb> fillColor;  // overrides the palette for polygons when set
     bool antialias = true;
 };
 
@@ -52,7 +52,7 @@ double inkLength(const Segment& s, float baseWidth);
 // picture then matches writePng's for scenes whose segments share one colour and width
 // and that have no polygons (writePng draws polygons first and groups strokes by width).
 class StreamedPng {
-public:
+  public:
     StreamedPng(const RenderOptions& o, const Bounds& bounds, double ink, bool anySegments,
                 float baseWidth, std::vector<Rgb> palette, std::filesystem::path path);
     ~StreamedPng();
@@ -63,7 +63,7 @@ public:
     void polygon(std::span<const Vec3> vertices, std::uint16_t color);
     void finish();  // writes the file atomically; throws Error
 
-private:
+  private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };

@@ -13,26 +13,26 @@ struct Camera {
     // Unset fields are chosen to frame the mesh: the camera looks at the centre of the
     // bounds from the front (+z, slightly raised), far enough that everything is in view.
     std::optional<Vec3> viewpoint;
-    std::optional<Vec3> target;      // cpfg's "view reference point"
+    std::optional<Vec3> target;  // cpfg's "view reference point"
     Vec3 up{0, 1, 0};
-    double fieldOfView = 40;         // vertical, degrees
+    double fieldOfView = 40;  // vertical, degrees
     bool orthographic = false;
 };
 
 struct Lighting {
     Vec3 sunDirection{0.4, 1.0, 0.6};  // towards the sun (need not be unit length)
     double sunIntensity = 0.9;
-    double skyIntensity = 0.35;        // ambient light from the sky hemisphere
+    double skyIntensity = 0.35;  // ambient light from the sky hemisphere
     bool shadows = true;
 };
 
 struct RaytraceOptions {
     int width = 800, height = 800;
-    int samplesPerPixel = 4;           // antialiasing (stratified)
+    int samplesPerPixel = 4;  // antialiasing (stratified)
     Rgb background{1, 1, 1};
     Camera camera;
     Lighting lighting;
-    unsigned threads = 0;              // 0: all cores
+    unsigned threads = 0;  // 0: all cores
 };
 
 // Renders the mesh to a PNG at `path` (atomically, like writeImage). Throws Error.

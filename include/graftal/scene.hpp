@@ -67,7 +67,7 @@ struct SurfaceInstance {
 };
 
 class Scene {
-public:
+  public:
     std::vector<Segment> segments;
     // Filled polygons, stored flat: polygon k has vertices
     // polygonVertices[polygonStart[k] .. polygonStart[k+1]).

@@ -12,7 +12,7 @@
 namespace graftal {
 
 class ModuleSink {
-public:
+  public:
     virtual ~ModuleSink() = default;
     virtual void module(Symbol symbol, std::span<const double> params) = 0;
 };
@@ -41,8 +41,8 @@ struct StreamedMeasure {
     std::uint64_t modules = 0;
     std::vector<std::uint64_t> symbolCounts;  // indexed by symbol id
     std::uint64_t segments = 0, polygons = 0;
-    Bounds bounds;        // of segment ends and polygon vertices
-    double ink = 0;       // sum of inkLength() over the segments
+    Bounds bounds;   // of segment ends and polygon vertices
+    double ink = 0;  // sum of inkLength() over the segments
     float baseWidth = 1;
     bool is3D = false;
 };

@@ -23,12 +23,12 @@ struct BezierPatch {
 struct Surface {
     std::string name;
     std::vector<BezierPatch> patches;
-    Vec3 contactPoint;          // goes to the turtle position
+    Vec3 contactPoint;  // goes to the turtle position
     Vec3 endPoint;
-    Vec3 heading{0, 1, 0};      // goes to the turtle's H
-    Vec3 up{0, 0, 1};           // goes to the turtle's U
-    double size = 1;            // the surface's own scale
-    Bounds bounds;              // of the control points
+    Vec3 heading{0, 1, 0};  // goes to the turtle's H
+    Vec3 up{0, 0, 1};       // goes to the turtle's U
+    double size = 1;        // the surface's own scale
+    Bounds bounds;          // of the control points
 };
 
 // Parses the text of a .s file. Errors carry file:line:column.
@@ -39,7 +39,7 @@ Surface loadSurface(const std::filesystem::path& path);
 Vec3 evaluatePatch(const BezierPatch& p, double s, double t, Vec3* normal = nullptr);
 
 class SurfaceLibrary {
-public:
+  public:
     // The surfaces shipped with graftal (a leaf and a petal), always available.
     static SurfaceLibrary builtin();
 
@@ -49,7 +49,7 @@ public:
     const Surface* find(const std::string& name) const;
     std::vector<std::string> names() const;
 
-private:
+  private:
     std::map<std::string, Surface> surfaces_;
 };
 

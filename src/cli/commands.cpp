@@ -1,10 +1,10 @@
 #include "commands.hpp"
 
+#include <unistd.h>
 #include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <chrono>
-#include <unistd.h>
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
@@ -12,22 +12,25 @@
 
 #include "graftal/derivation.hpp"
 #include "graftal/growth.hpp"
-#include "graftal/streaming.hpp"
 #include "graftal/lsystem.hpp"
+#include "graftal/streaming.hpp"
 #include "graftal/turtle.hpp"
 
 namespace graftal::cli {
 
 namespace {
 
-Error usageError(const std::string& message) { return Error(SourceLocation{"graftal", 0, 0}, message); }
+Error usageError(const std::string& message) {
+    return Error(SourceLocation{"graftal", 0, 0}, message);
+}
 
 void printWarnings(const LSystem& ls) {
     for (const auto& w : ls.warnings) std::cerr << w.toString() << '\n';
 }
 
-nlohmann::ordered_json point(const Vec3& p) { return {p.x, p.y, p.z}; }
-
+nlohmann::ordered_json point(const Vec3& p) {
+    return {p.x, p.y, p.z};
+}
 
 }  // namespace
 
@@ -67,7 +70,8 @@ DerivationOptions derivationOptions(const InputOptions& in) {
         auto start = std::chrono::steady_clock::now();
         opts.progress = [start](int step, std::size_t modules) {
             if (std::chrono::steady_clock::now() - start < std::chrono::seconds(1)) return;
-            std::cerr << "\rgraftal: step " << step << ": " << modules << " modules   " << std::flush;
+            std::cerr << "\rgraftal: step " << step << ": " << modules << " modules   "
+                      << std::flush;
             progressShown = true;
         };
     }
@@ -78,7 +82,8 @@ bool chooseStreaming(const Loaded& l, const InputOptions& in, bool canStream, bo
     std::string obstacle = streamingObstacle(l.lsystem);
     if (in.stream) {
         if (!obstacle.empty())
-            throw Error(SourceLocation{l.lsystem.file, 0, 0}, "--stream: this L-system cannot be streamed: " + obstacle);
+            throw Error(SourceLocation{l.lsystem.file, 0, 0},
+                        "--stream: this L-system cannot be streamed: " + obstacle);
         if (!canStream) throw usageError("--stream is not available for this output");
         return true;
     }
@@ -89,7 +94,8 @@ bool chooseStreaming(const Loaded& l, const InputOptions& in, bool canStream, bo
     const double streamLimit = static_cast<double>(in.streamLimit);
     // The last step holds the previous string and the new one; parameters take more.
     double perModule = l.lsystem.isParametric() ? 2 + 4 + 8 * 2 : 2;
-    double last = g.expectedModules.back(), previous = g.expectedModules[g.expectedModules.size() - 2];
+    double last = g.expectedModules.back(),
+           previous = g.expectedModules[g.expectedModules.size() - 2];
     double bytes = (last + previous) * perModule;
     // A picture drawn from a held string also holds its segments.
     if (countGeometry && g.exact) {
@@ -99,21 +105,24 @@ bool chooseStreaming(const Loaded& l, const InputOptions& in, bool canStream, bo
         bytes = last * perModule + segments * static_cast<double>(sizeof(Segment));
     }
     if (bytes <= static_cast<double>(in.memoryLimit)) return false;
-    std::string size = g.exact ? g.modules.back().toString() : "about " + formatNumber(std::round(last));
+    std::string size =
+        g.exact ? g.modules.back().toString() : "about " + formatNumber(std::round(last));
     if (canStream && obstacle.empty() && last > streamLimit)
         obstacle = "more than --stream-limit " + formatNumber(streamLimit) + " modules";
     if (canStream && obstacle.empty()) {
-        note(in, "the string would have " + size + " modules, more than --memory-limit holds; "
-                 "streaming it instead");
+        note(in, "the string would have " + size +
+                     " modules, more than --memory-limit holds; "
+                     "streaming it instead");
         return true;
     }
-    throw Error(SourceLocation{l.lsystem.file, 0, 0},
-                "derivation step " + std::to_string(l.steps) + " would make a string of " + size +
-                    " modules (about " + formatBytes(bytes) + "), more than the memory limit of " +
-                    formatBytes(static_cast<double>(in.memoryLimit)) +
-                    "; lower the derivation length (-n) or raise --memory-limit" +
-                    (obstacle.empty() || !canStream ? std::string()
-                                                    : " (it cannot be streamed: " + obstacle + ")"));
+    throw Error(
+        SourceLocation{l.lsystem.file, 0, 0},
+        "derivation step " + std::to_string(l.steps) + " would make a string of " + size +
+            " modules (about " + formatBytes(bytes) + "), more than the memory limit of " +
+            formatBytes(static_cast<double>(in.memoryLimit)) +
+            "; lower the derivation length (-n) or raise --memory-limit" +
+            (obstacle.empty() || !canStream ? std::string()
+                                            : " (it cannot be streamed: " + obstacle + ")"));
 }
 
 Derived loadAndDerive(const InputOptions& in) {
@@ -134,7 +143,8 @@ Vec3 parseVector(const std::string& option, const std::string& text) {
             throw usageError(option + " '" + text + "': expected three numbers x,y,z");
         p = end;
         if (k < 2) {
-            if (*p != ',') throw usageError(option + " '" + text + "': expected three numbers x,y,z");
+            if (*p != ',')
+                throw usageError(option + " '" + text + "': expected three numbers x,y,z");
             ++p;
         }
     }
@@ -152,10 +162,14 @@ std::size_t parseByteSize(const std::string& text) {
     if (!unit.empty() && unit.back() == 'B') unit.pop_back();
     if (!unit.empty() && unit.back() == 'I') unit.pop_back();
     double k = 1;
-    if (unit == "K") k = 1024.0;
-    else if (unit == "M") k = 1024.0 * 1024;
-    else if (unit == "G") k = 1024.0 * 1024 * 1024;
-    else if (unit == "T") k = 1024.0 * 1024 * 1024 * 1024;
+    if (unit == "K")
+        k = 1024.0;
+    else if (unit == "M")
+        k = 1024.0 * 1024;
+    else if (unit == "G")
+        k = 1024.0 * 1024 * 1024;
+    else if (unit == "T")
+        k = 1024.0 * 1024 * 1024 * 1024;
     else if (!unit.empty())
         throw usageError("'" + text + "': unknown size unit (use K, M, G or T)");
     return static_cast<std::size_t>(value * k);
@@ -172,7 +186,8 @@ void parseImageSize(const std::string& text, int& width, int& height) {
              r2.ptr == text.data() + text.size();
     }
     if (!ok || w < 1 || h < 1 || w > 32767 || h > 32767)
-        throw usageError("--size '" + text + "': expected WIDTHxHEIGHT in pixels, e.g. 800x600 "
+        throw usageError("--size '" + text +
+                         "': expected WIDTHxHEIGHT in pixels, e.g. 800x600 "
                          "(each from 1 to 32767)");
     width = w;
     height = h;
@@ -180,7 +195,7 @@ void parseImageSize(const std::string& text, int& width, int& height) {
 
 Rgb parseColor(const std::string& text) {
     static const std::map<std::string, Rgb> named = {
-        {"black", {0, 0, 0}},       {"white", {1, 1, 1}},          {"red", {0.8f, 0.1f, 0.1f}},
+        {"black", {0, 0, 0}},           {"white", {1, 1, 1}},         {"red", {0.8f, 0.1f, 0.1f}},
         {"green", {0.1f, 0.5f, 0.15f}}, {"blue", {0.1f, 0.2f, 0.7f}}, {"none", {1, 1, 1}},
     };
     if (auto it = named.find(text); it != named.end()) return it->second;
@@ -188,14 +203,15 @@ Rgb parseColor(const std::string& text) {
     unsigned v = 0;
     auto r = std::from_chars(hex.data(), hex.data() + hex.size(), v, 16);
     if (hex.size() != 6 || r.ec != std::errc() || r.ptr != hex.data() + hex.size())
-        throw usageError("'" + text + "' is not a colour (expected #rrggbb or a name such as black)");
+        throw usageError("'" + text +
+                         "' is not a colour (expected #rrggbb or a name such as black)");
     return {((v >> 16) & 255) / 255.0f, ((v >> 8) & 255) / 255.0f, (v & 255) / 255.0f};
 }
 
 namespace {
 
 class PrintingSink : public ModuleSink {
-public:
+  public:
     explicit PrintingSink(const SymbolTable& t) : table_(t) { buffer_.reserve(1 << 16); }
     ~PrintingSink() override { flush(); }
     void module(Symbol s, std::span<const double> params) override {
@@ -215,7 +231,7 @@ public:
         buffer_.clear();
     }
 
-private:
+  private:
     const SymbolTable& table_;
     std::string buffer_;
 };
@@ -252,7 +268,8 @@ nlohmann::ordered_json countJson(const BigCount& c) {
     return c.toString();
 }
 
-nlohmann::ordered_json symbolsJson(const SymbolTable& table, const std::vector<std::uint64_t>& counts) {
+nlohmann::ordered_json symbolsJson(const SymbolTable& table,
+                                   const std::vector<std::uint64_t>& counts) {
     std::vector<Symbol> present;
     for (std::size_t s = 0; s < counts.size(); ++s)
         if (counts[s]) present.push_back(static_cast<Symbol>(s));
@@ -279,7 +296,8 @@ int printPrediction(const InputOptions& in, const Loaded& l) {
         nlohmann::ordered_json symbols = nlohmann::ordered_json::object();
         for (std::size_t s = 0; s < g.symbolsAtEnd.size(); ++s)
             if (!(g.symbolsAtEnd[s] == BigCount()))
-                symbols[l.lsystem.symbols.name(static_cast<Symbol>(s))] = countJson(g.symbolsAtEnd[s]);
+                symbols[l.lsystem.symbols.name(static_cast<Symbol>(s))] =
+                    countJson(g.symbolsAtEnd[s]);
         j["symbols"] = symbols;
     } else {
         j["modules"] = g.expectedModules.back();
@@ -332,6 +350,5 @@ int runStats(const InputOptions& in, bool geometry, bool predict) {
     std::cout << j.dump(2) << '\n';
     return 0;
 }
-
 
 }  // namespace graftal::cli

@@ -29,12 +29,12 @@ struct InputOptions {
 struct RenderCommandOptions {
     std::string output;
     RenderOptions render;
-    std::string view;                    // --view front|back|side|top: 3D as 2D line art
+    std::string view;  // --view front|back|side|top: 3D as 2D line art
     std::optional<Vec3> viewpoint, target, up, light;
     std::optional<double> fieldOfView;
     int samplesPerPixel = 4;
     int tubeSides = 8;
-    std::optional<int> spline;           // --spline N: B-spline subdivisions (0: off)
+    std::optional<int> spline;  // --spline N: B-spline subdivisions (0: off)
     bool sizeGiven = false, backgroundGiven = false;
 };
 

@@ -10,15 +10,18 @@ namespace {
 void addInputOptions(CLI::App& cmd, graftal::cli::InputOptions& in, std::string& memoryLimit) {
     cmd.add_option("file", in.file, "L-system file (.l)")->required();
     cmd.add_option("-n,--steps", in.steps, "derivation length (overrides the file)");
-    cmd.add_option("-D,--define", [&in](const CLI::results_t& rs) {
-           for (const auto& r : rs) {
-               auto eq = r.find('=');
-               if (eq == std::string::npos || eq == 0)
-                   throw CLI::ValidationError("-D", "expected NAME=VALUE, got '" + r + "'");
-               in.defines[r.substr(0, eq)] = r.substr(eq + 1);
-           }
-           return true;
-       }, "set a #define constant, NAME=VALUE (repeatable)")
+    cmd.add_option(
+           "-D,--define",
+           [&in](const CLI::results_t& rs) {
+               for (const auto& r : rs) {
+                   auto eq = r.find('=');
+                   if (eq == std::string::npos || eq == 0)
+                       throw CLI::ValidationError("-D", "expected NAME=VALUE, got '" + r + "'");
+                   in.defines[r.substr(0, eq)] = r.substr(eq + 1);
+               }
+               return true;
+           },
+           "set a #define constant, NAME=VALUE (repeatable)")
         ->type_name("NAME=VALUE")
         ->allow_extra_args(false)
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
@@ -69,7 +72,8 @@ int main(int argc, char** argv) {
     render->add_option("--color", color, "line colour, #rrggbb (default: the palette)");
     render->add_option("--margin", out.render.margin, "margin, fraction of the picture")
         ->check(CLI::Range(0.0, 0.45));
-    render->add_option("--view", out.view, "draw a 3D model as 2D line art: front, back, side, top");
+    render->add_option("--view", out.view,
+                       "draw a 3D model as 2D line art: front, back, side, top");
     render->add_option("--viewpoint", viewpoint, "3D camera position x,y,z (default: framed)");
     render->add_option("--target", target, "3D point the camera looks at, x,y,z");
     render->add_option("--up", up, "3D camera up vector x,y,z (default 0,1,0)");
@@ -80,8 +84,9 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1, 1024));
     render->add_option("--tube-sides", out.tubeSides, "3D cylinder cross-section vertices")
         ->check(CLI::Range(3, 64));
-    render->add_option("--spline", out.spline,
-                       "draw turtle paths as B-splines with N points per segment (0: straight)")
+    render
+        ->add_option("--spline", out.spline,
+                     "draw turtle paths as B-splines with N points per segment (0: straight)")
         ->check(CLI::Range(0, 64));
 
     try {

@@ -43,7 +43,8 @@ SurfaceLibrary surfacesFor(const LSystem& ls, const std::string& file) {
         Surface s;
         if (std::filesystem::exists(path)) {
             s = loadSurface(path);
-        } else if (const Surface* builtin = lib.find(std::filesystem::path(decl.file).stem().string())) {
+        } else if (const Surface* builtin =
+                       lib.find(std::filesystem::path(decl.file).stem().string())) {
             s = *builtin;
         } else {
             throw Error(decl.location, "surface file '" + decl.file + "' not found (looked in " +
@@ -57,14 +58,16 @@ SurfaceLibrary surfacesFor(const LSystem& ls, const std::string& file) {
     return lib;
 }
 
-RaytraceOptions raytraceOptions(const LSystem& ls, const RenderCommandOptions& out, unsigned threads) {
+RaytraceOptions raytraceOptions(const LSystem& ls, const RenderCommandOptions& out,
+                                unsigned threads) {
     const ViewSettings& v = ls.view;
     RaytraceOptions r;
     r.width = out.render.width;
     r.height = out.render.height;
     r.samplesPerPixel = out.samplesPerPixel;
     r.threads = threads;
-    r.background = out.backgroundGiven ? out.render.background : v.background.value_or(out.render.background);
+    r.background =
+        out.backgroundGiven ? out.render.background : v.background.value_or(out.render.background);
     r.camera.viewpoint = out.viewpoint ? out.viewpoint : v.viewpoint;
     r.camera.target = out.target ? out.target : v.viewReferencePoint;
     if (auto up = out.up ? out.up : v.upVector) r.camera.up = *up;
@@ -79,8 +82,9 @@ RaytraceOptions raytraceOptions(const LSystem& ls, const RenderCommandOptions& o
 int runRender(const InputOptions& in, const RenderCommandOptions& out) {
     auto kind = outputKindFor(out.output);
     if (!kind)
-        throw Error(SourceLocation{"graftal", 0, 0},
-                    "-o " + out.output + ": unknown format (use .svg, .png, .pdf, .obj, .ply or .glb)");
+        throw Error(
+            SourceLocation{"graftal", 0, 0},
+            "-o " + out.output + ": unknown format (use .svg, .png, .pdf, .obj, .ply or .glb)");
     std::optional<ViewDirection> view;
     if (!out.view.empty()) {
         view = viewDirectionFromName(out.view);
@@ -88,8 +92,9 @@ int runRender(const InputOptions& in, const RenderCommandOptions& out) {
             throw Error(SourceLocation{"graftal", 0, 0},
                         "--view '" + out.view + "': expected front, back, side or top");
         if (*kind != OutputKind::Picture)
-            throw Error(SourceLocation{"graftal", 0, 0}, "--view draws 2D line art; it applies "
-                                                         "to .svg, .png and .pdf, not 3D files");
+            throw Error(SourceLocation{"graftal", 0, 0},
+                        "--view draws 2D line art; it applies "
+                        "to .svg, .png and .pdf, not 3D files");
     }
 
     {
@@ -105,23 +110,27 @@ int runRender(const InputOptions& in, const RenderCommandOptions& out) {
         }
     }
     Derived d = loadAndDerive(in);
-    Scene scene = interpret(d.lsystem, applyHomomorphism(d.lsystem, d.modules, derivationOptions(in)));
+    Scene scene =
+        interpret(d.lsystem, applyHomomorphism(d.lsystem, d.modules, derivationOptions(in)));
     if (int n = out.spline.value_or(d.lsystem.view.splineSubdivisions); n > 0)
         scene = smoothSegments(scene, n);
     if (!d.lsystem.view.colorMap.empty()) {
-        std::filesystem::path map = std::filesystem::path(in.file).parent_path() / d.lsystem.view.colorMap;
+        std::filesystem::path map =
+            std::filesystem::path(in.file).parent_path() / d.lsystem.view.colorMap;
         scene.palette = loadColorMap(map);
     }
 
     bool threeD = scene.is3D && !view;
-    if (*kind == OutputKind::Picture && !(threeD && imageFormatFor(out.output) == ImageFormat::Png)) {
+    if (*kind == OutputKind::Picture &&
+        !(threeD && imageFormatFor(out.output) == ImageFormat::Png)) {
         // Line art: 2D scenes as they are, 3D scenes seen from the front unless told.
         if (scene.is3D) scene = projectScene(scene, view.value_or(ViewDirection::Front));
         RenderOptions render = out.render;
         // pfg's scale factor: the picture fills that share of the frame (100 = all of it).
         double fill = std::clamp(d.lsystem.view.scaleFactor / 100.0, 0.01, 1.0);
         render.margin = 0.5 - (0.5 - render.margin) * fill;
-        if (!out.backgroundGiven && d.lsystem.view.background) render.background = *d.lsystem.view.background;
+        if (!out.backgroundGiven && d.lsystem.view.background)
+            render.background = *d.lsystem.view.background;
         writeImage(scene, render, out.output);
         return 0;
     }
@@ -142,10 +151,18 @@ int runRender(const InputOptions& in, const RenderCommandOptions& out) {
     }
     Mesh mesh = buildMesh(scene, mo, &surfaces);
     switch (*kind) {
-        case OutputKind::Obj: writeObj(mesh, out.output); break;
-        case OutputKind::Ply: writePly(mesh, out.output); break;
-        case OutputKind::Glb: writeGlb(mesh, out.output); break;
-        case OutputKind::Picture: renderRaytraced(mesh, raytraceOptions(d.lsystem, out, in.threads), out.output); break;
+        case OutputKind::Obj:
+            writeObj(mesh, out.output);
+            break;
+        case OutputKind::Ply:
+            writePly(mesh, out.output);
+            break;
+        case OutputKind::Glb:
+            writeGlb(mesh, out.output);
+            break;
+        case OutputKind::Picture:
+            renderRaytraced(mesh, raytraceOptions(d.lsystem, out, in.threads), out.output);
+            break;
     }
     return 0;
 }

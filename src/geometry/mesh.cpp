@@ -105,7 +105,7 @@ void appendPolygons(const Scene& scene, Mesh& mesh) {
 // along U, scaled by the placement's scale over the surface's own size (cpfg's SIZE is the
 // size the surface has at scale 1, as the .s parser documents).
 class SurfacePlacement {
-public:
+  public:
     SurfacePlacement(const Surface& surface, const SurfaceInstance& instance)
         : contact_(surface.contactPoint),
           origin_(instance.origin),
@@ -128,7 +128,7 @@ public:
     }
     Vector3 up() const { return u_; }
 
-private:
+  private:
     Vector3 contact_, origin_;
     double scale_;
     Vector3 hs_, ls_, us_;  // the surface's own frame
@@ -136,7 +136,7 @@ private:
 };
 
 class SurfaceTessellator {
-public:
+  public:
     explicit SurfaceTessellator(int divisions)
         : divisions_(divisions),
           points_((divisions + 1) * (divisions + 1)),
@@ -175,7 +175,7 @@ public:
         }
     }
 
-private:
+  private:
     static bool usableNormal(const Vector3& n) {
         return meshing::isFinite(n) && meshing::length(n) > 1e-12;
     }

@@ -11,7 +11,7 @@
 namespace graftal {
 
 class PolygonTriangulator {
-public:
+  public:
     // Appends triangles to `triangles` as indices into `outline`, 3 each, counter-clockwise
     // around the returned unit normal (the outline's Newell normal, so either winding of
     // the outline works). A simple outline of n distinct vertices gives n - 2 triangles.
@@ -19,7 +19,7 @@ public:
     // distinct vertices, all of them on one line, or a non-finite coordinate.
     Vec3 triangulate(std::span<const Vec3> outline, std::vector<std::uint32_t>& triangles);
 
-private:
+  private:
     struct Corner {
         double x = 0, y = 0;      // in the outline's plane
         std::uint32_t index = 0;  // into the outline

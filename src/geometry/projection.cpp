@@ -12,10 +12,14 @@ std::optional<ViewDirection> viewDirectionFromName(const std::string& name) {
 
 static Vec3 project(const Vec3& p, ViewDirection v) {
     switch (v) {
-        case ViewDirection::Front: return {p.x, p.y, 0};
-        case ViewDirection::Back: return {-p.x, p.y, 0};
-        case ViewDirection::Side: return {-p.z, p.y, 0};
-        case ViewDirection::Top: return {p.x, -p.z, 0};
+        case ViewDirection::Front:
+            return {p.x, p.y, 0};
+        case ViewDirection::Back:
+            return {-p.x, p.y, 0};
+        case ViewDirection::Side:
+            return {-p.z, p.y, 0};
+        case ViewDirection::Top:
+            return {p.x, -p.z, 0};
     }
     return p;
 }

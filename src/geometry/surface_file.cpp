@@ -59,7 +59,7 @@ struct PatchNeighbours {
 // item) but knows where it is, so that every error names the line and column and says
 // what was expected there.
 class SurfaceParser {
-public:
+  public:
     SurfaceParser(std::string_view text, const std::string& fileName)
         : text_(text), fileName_(fileName) {
         lineStarts_.push_back(0);
@@ -123,7 +123,7 @@ public:
         return s;
     }
 
-private:
+  private:
     SourceLocation locationAt(std::size_t offset) const {
         auto it = std::upper_bound(lineStarts_.begin(), lineStarts_.end(), offset);
         auto line = static_cast<int>(std::distance(lineStarts_.begin(), it));

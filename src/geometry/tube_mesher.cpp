@@ -54,7 +54,7 @@ Vector3 transport(const Vector3& u, const Vector3& from, const Vector3& to) {
 
 // Appends to a mesh whose storage has been reserved.
 class Emitter {
-public:
+  public:
     explicit Emitter(Mesh& mesh) : mesh_(mesh) {}
 
     std::uint32_t vertex(const Vector3& p, const Vector3& n) {
@@ -69,7 +69,7 @@ public:
         mesh_.triangleColor.push_back(color);
     }
 
-private:
+  private:
     Mesh& mesh_;
 };
 

@@ -26,7 +26,7 @@ namespace graftal {
 // Per segment, with n = tubeSides: 2n side triangles; an unshared start or end adds a ring
 // and a cap centre (n + 1 vertices, n triangles); a shared joint adds n vertices once.
 class TubeMesher {
-public:
+  public:
     TubeMesher(const Scene& scene, const MeshOptions& options);
 
     std::size_t vertexCount() const { return vertexCount_; }
@@ -35,7 +35,7 @@ public:
     // Appends the tubes to `mesh` (whose capacity the caller has reserved).
     void append(Mesh& mesh) const;
 
-private:
+  private:
     double radius(float width) const;
     double startRadius(std::uint32_t s) const;
     bool usable(std::uint32_t s) const { return (flags_[s] & kUsable) != 0; }

@@ -15,9 +15,12 @@ std::string SourceLocation::toString() const {
 
 static const char* severityName(Severity s) {
     switch (s) {
-        case Severity::Error: return "error";
-        case Severity::Warning: return "warning";
-        case Severity::Note: return "note";
+        case Severity::Error:
+            return "error";
+        case Severity::Warning:
+            return "warning";
+        case Severity::Note:
+            return "note";
     }
     return "error";
 }
@@ -30,7 +33,9 @@ std::ostream& operator<<(std::ostream& os, const SourceLocation& loc) {
     return os << loc.toString();
 }
 
-std::ostream& operator<<(std::ostream& os, const Diagnostic& d) { return os << d.toString(); }
+std::ostream& operator<<(std::ostream& os, const Diagnostic& d) {
+    return os << d.toString();
+}
 
 void DiagnosticList::error(SourceLocation loc, std::string message) {
     items_.push_back({Severity::Error, std::move(loc), std::move(message)});

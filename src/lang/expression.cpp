@@ -14,8 +14,20 @@ namespace {
 constexpr double kDegree = 3.14159265358979323846 / 180.0;
 
 enum Fn1 : std::uint8_t {
-    FnSin, FnCos, FnTan, FnAsin, FnAcos, FnAtan, FnExp, FnLog, FnSqrt, FnFabs, FnFloor,
-    FnCeil, FnTrunc, FnSign,
+    FnSin,
+    FnCos,
+    FnTan,
+    FnAsin,
+    FnAcos,
+    FnAtan,
+    FnExp,
+    FnLog,
+    FnSqrt,
+    FnFabs,
+    FnFloor,
+    FnCeil,
+    FnTrunc,
+    FnSign,
 };
 enum Fn2 : std::uint8_t { FnAtan2, FnMin, FnMax };
 
@@ -27,22 +39,22 @@ struct FunctionInfo {
 
 // cpfg's trigonometry works in degrees, and so do we.
 constexpr std::array kFunctions{
-    FunctionInfo{"sin", 1, FnSin},     FunctionInfo{"cos", 1, FnCos},
-    FunctionInfo{"tan", 1, FnTan},     FunctionInfo{"asin", 1, FnAsin},
-    FunctionInfo{"acos", 1, FnAcos},   FunctionInfo{"atan", 1, FnAtan},
-    FunctionInfo{"exp", 1, FnExp},     FunctionInfo{"log", 1, FnLog},
-    FunctionInfo{"sqrt", 1, FnSqrt},   FunctionInfo{"fabs", 1, FnFabs},
-    FunctionInfo{"abs", 1, FnFabs},    FunctionInfo{"floor", 1, FnFloor},
-    FunctionInfo{"ceil", 1, FnCeil},   FunctionInfo{"trunc", 1, FnTrunc},
-    FunctionInfo{"sign", 1, FnSign},   FunctionInfo{"atan2", 2, FnAtan2},
-    FunctionInfo{"min", 2, FnMin},     FunctionInfo{"max", 2, FnMax},
-    FunctionInfo{"ran", 1, 0},         FunctionInfo{"nran", 2, 0},
+    FunctionInfo{"sin", 1, FnSin},   FunctionInfo{"cos", 1, FnCos},
+    FunctionInfo{"tan", 1, FnTan},   FunctionInfo{"asin", 1, FnAsin},
+    FunctionInfo{"acos", 1, FnAcos}, FunctionInfo{"atan", 1, FnAtan},
+    FunctionInfo{"exp", 1, FnExp},   FunctionInfo{"log", 1, FnLog},
+    FunctionInfo{"sqrt", 1, FnSqrt}, FunctionInfo{"fabs", 1, FnFabs},
+    FunctionInfo{"abs", 1, FnFabs},  FunctionInfo{"floor", 1, FnFloor},
+    FunctionInfo{"ceil", 1, FnCeil}, FunctionInfo{"trunc", 1, FnTrunc},
+    FunctionInfo{"sign", 1, FnSign}, FunctionInfo{"atan2", 2, FnAtan2},
+    FunctionInfo{"min", 2, FnMin},   FunctionInfo{"max", 2, FnMax},
+    FunctionInfo{"ran", 1, 0},       FunctionInfo{"nran", 2, 0},
 };
 
 }  // namespace
 
 class ExpressionCompiler {
-public:
+  public:
     ExpressionCompiler(std::string_view text, const SourceLocation& loc,
                        const ExpressionScope& scope, DiagnosticList& diags)
         : text_(text), loc_(loc), scope_(scope), diags_(diags) {}
@@ -65,9 +77,10 @@ public:
         return std::move(expr_);
     }
 
-private:
+  private:
     static std::string_view trim(std::string_view s) {
-        while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
+        while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front())))
+            s.remove_prefix(1);
         while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
         return s;
     }
@@ -131,16 +144,23 @@ private:
         parseAdditive();
         while (!failed_) {
             Expression::Op op;
-            if (accept("<=")) op = Expression::Op::Le;
-            else if (accept(">=")) op = Expression::Op::Ge;
-            else if (accept("==")) op = Expression::Op::Eq;
-            else if (accept("!=")) op = Expression::Op::Ne;
-            else if (accept("<")) op = Expression::Op::Lt;
-            else if (accept(">")) op = Expression::Op::Gt;
+            if (accept("<="))
+                op = Expression::Op::Le;
+            else if (accept(">="))
+                op = Expression::Op::Ge;
+            else if (accept("=="))
+                op = Expression::Op::Eq;
+            else if (accept("!="))
+                op = Expression::Op::Ne;
+            else if (accept("<"))
+                op = Expression::Op::Lt;
+            else if (accept(">"))
+                op = Expression::Op::Gt;
             else if (peekSingle('=')) {
                 fail(pos_, "expected '==' for a comparison, found '='");
                 return;
-            } else return;
+            } else
+                return;
             parseAdditive();
             emit(op, 1);
         }
@@ -154,28 +174,46 @@ private:
     void parseAdditive() {
         parseMultiplicative();
         while (!failed_) {
-            if (accept("+")) { parseMultiplicative(); emit(Expression::Op::Add); }
-            else if (accept("-")) { parseMultiplicative(); emit(Expression::Op::Sub); }
-            else return;
+            if (accept("+")) {
+                parseMultiplicative();
+                emit(Expression::Op::Add);
+            } else if (accept("-")) {
+                parseMultiplicative();
+                emit(Expression::Op::Sub);
+            } else
+                return;
         }
     }
 
     void parseMultiplicative() {
         parseUnary();
         while (!failed_) {
-            if (accept("*")) { parseUnary(); emit(Expression::Op::Mul); }
-            else if (accept("/")) { parseUnary(); emit(Expression::Op::Div); }
-            else if (accept("%")) { parseUnary(); emit(Expression::Op::Mod); }
-            else return;
+            if (accept("*")) {
+                parseUnary();
+                emit(Expression::Op::Mul);
+            } else if (accept("/")) {
+                parseUnary();
+                emit(Expression::Op::Div);
+            } else if (accept("%")) {
+                parseUnary();
+                emit(Expression::Op::Mod);
+            } else
+                return;
         }
     }
 
     void parseUnary() {
-        if (accept("-")) { parseUnary(); emit(Expression::Op::Neg); return; }
-        if (accept("+")) { parseUnary(); return; }
+        if (accept("-")) {
+            parseUnary();
+            emit(Expression::Op::Neg);
+            return;
+        }
+        if (accept("+")) {
+            parseUnary();
+            return;
+        }
         skipSpace();
-        if (pos_ < text_.size() && text_[pos_] == '!' &&
-            text_.substr(pos_, 2) != "!=") {
+        if (pos_ < text_.size() && text_[pos_] == '!' && text_.substr(pos_, 2) != "!=") {
             ++pos_;
             parseUnary();
             emit(Expression::Op::Not);
@@ -244,7 +282,8 @@ private:
         double v = 0;
         auto r = std::from_chars(text_.data() + start, text_.data() + pos_, v);
         if (r.ec != std::errc() || r.ptr != text_.data() + pos_) {
-            fail(start, "malformed number '" + std::string(text_.substr(start, pos_ - start)) + "'");
+            fail(start,
+                 "malformed number '" + std::string(text_.substr(start, pos_ - start)) + "'");
             return;
         }
         emitConst(v);
@@ -272,8 +311,8 @@ private:
                 sub.expanding_.insert(name);
                 Expression e = sub.compile();
                 if (e.empty()) {
-                    fail(start, "#define '" + name + "' is not a valid expression: '" +
-                                    it->second + "'");
+                    fail(start,
+                         "#define '" + name + "' is not a valid expression: '" + it->second + "'");
                     return;
                 }
                 inlineProgram(e);
@@ -343,15 +382,20 @@ private:
         for (const auto& in : expr_.code_) {
             switch (in.op) {
                 case Expression::Op::Const:
-                case Expression::Op::Var: ++depth; break;
+                case Expression::Op::Var:
+                    ++depth;
+                    break;
                 case Expression::Op::Neg:
                 case Expression::Op::Not:
                 case Expression::Op::Call1:
                 case Expression::Op::Ran:
-                case Expression::Op::Jump: break;
+                case Expression::Op::Jump:
+                    break;
                 case Expression::Op::JumpIfFalse:
                 case Expression::Op::JumpIfTrue:
-                case Expression::Op::Pop: --depth; break;
+                case Expression::Op::Pop:
+                    --depth;
+                    break;
                 default:
                     if (in.op == Expression::Op::Ne && in.arg == 0) break;  // normalise
                     --depth;
@@ -390,29 +434,46 @@ double evaluateConstant(std::string_view text, const SourceLocation& loc,
 
 static double apply1(std::uint8_t fn, double x) {
     switch (fn) {
-        case FnSin: return std::sin(x * kDegree);
-        case FnCos: return std::cos(x * kDegree);
-        case FnTan: return std::tan(x * kDegree);
-        case FnAsin: return std::asin(x) / kDegree;
-        case FnAcos: return std::acos(x) / kDegree;
-        case FnAtan: return std::atan(x) / kDegree;
-        case FnExp: return std::exp(x);
-        case FnLog: return std::log(x);
-        case FnSqrt: return std::sqrt(x);
-        case FnFabs: return std::fabs(x);
-        case FnFloor: return std::floor(x);
-        case FnCeil: return std::ceil(x);
-        case FnTrunc: return std::trunc(x);
-        case FnSign: return x > 0 ? 1.0 : (x < 0 ? -1.0 : 0.0);
+        case FnSin:
+            return std::sin(x * kDegree);
+        case FnCos:
+            return std::cos(x * kDegree);
+        case FnTan:
+            return std::tan(x * kDegree);
+        case FnAsin:
+            return std::asin(x) / kDegree;
+        case FnAcos:
+            return std::acos(x) / kDegree;
+        case FnAtan:
+            return std::atan(x) / kDegree;
+        case FnExp:
+            return std::exp(x);
+        case FnLog:
+            return std::log(x);
+        case FnSqrt:
+            return std::sqrt(x);
+        case FnFabs:
+            return std::fabs(x);
+        case FnFloor:
+            return std::floor(x);
+        case FnCeil:
+            return std::ceil(x);
+        case FnTrunc:
+            return std::trunc(x);
+        case FnSign:
+            return x > 0 ? 1.0 : (x < 0 ? -1.0 : 0.0);
     }
     return 0;
 }
 
 static double apply2(std::uint8_t fn, double a, double b) {
     switch (fn) {
-        case FnAtan2: return std::atan2(a, b) / kDegree;
-        case FnMin: return std::min(a, b);
-        case FnMax: return std::max(a, b);
+        case FnAtan2:
+            return std::atan2(a, b) / kDegree;
+        case FnMin:
+            return std::min(a, b);
+        case FnMax:
+            return std::max(a, b);
     }
     return 0;
 }
@@ -433,19 +494,37 @@ double Expression::evaluate(std::span<const double> slots, const EvalContext* ct
                                        " was given an argument outside its domain");
     };
     auto uniform = [&]() -> double {
-        if (!ctx || !ctx->uniform) throw Error(location_, "ran()/nran() used where no random stream exists");
+        if (!ctx || !ctx->uniform)
+            throw Error(location_, "ran()/nran() used where no random stream exists");
         return ctx->uniform();
     };
     for (std::size_t pc = 0; pc < code_.size(); ++pc) {
         const Instr& in = code_[pc];
         switch (in.op) {
-            case Op::Const: st[++sp] = constants_[in.arg]; break;
-            case Op::Var: st[++sp] = slots[in.arg]; break;
-            case Op::Neg: st[sp] = -st[sp]; break;
-            case Op::Not: st[sp] = st[sp] == 0 ? 1 : 0; break;
-            case Op::Add: st[sp - 1] += st[sp]; --sp; break;
-            case Op::Sub: st[sp - 1] -= st[sp]; --sp; break;
-            case Op::Mul: st[sp - 1] *= st[sp]; --sp; break;
+            case Op::Const:
+                st[++sp] = constants_[in.arg];
+                break;
+            case Op::Var:
+                st[++sp] = slots[in.arg];
+                break;
+            case Op::Neg:
+                st[sp] = -st[sp];
+                break;
+            case Op::Not:
+                st[sp] = st[sp] == 0 ? 1 : 0;
+                break;
+            case Op::Add:
+                st[sp - 1] += st[sp];
+                --sp;
+                break;
+            case Op::Sub:
+                st[sp - 1] -= st[sp];
+                --sp;
+                break;
+            case Op::Mul:
+                st[sp - 1] *= st[sp];
+                --sp;
+                break;
             case Op::Div:
                 if (st[sp] == 0) throw Error(location_, "division by zero in '" + text_ + "'");
                 st[sp - 1] /= st[sp];
@@ -461,11 +540,26 @@ double Expression::evaluate(std::span<const double> slots, const EvalContext* ct
                 --sp;
                 checkDomain(st[sp], "^");
                 break;
-            case Op::Lt: st[sp - 1] = st[sp - 1] < st[sp]; --sp; break;
-            case Op::Le: st[sp - 1] = st[sp - 1] <= st[sp]; --sp; break;
-            case Op::Gt: st[sp - 1] = st[sp - 1] > st[sp]; --sp; break;
-            case Op::Ge: st[sp - 1] = st[sp - 1] >= st[sp]; --sp; break;
-            case Op::Eq: st[sp - 1] = st[sp - 1] == st[sp]; --sp; break;
+            case Op::Lt:
+                st[sp - 1] = st[sp - 1] < st[sp];
+                --sp;
+                break;
+            case Op::Le:
+                st[sp - 1] = st[sp - 1] <= st[sp];
+                --sp;
+                break;
+            case Op::Gt:
+                st[sp - 1] = st[sp - 1] > st[sp];
+                --sp;
+                break;
+            case Op::Ge:
+                st[sp - 1] = st[sp - 1] >= st[sp];
+                --sp;
+                break;
+            case Op::Eq:
+                st[sp - 1] = st[sp - 1] == st[sp];
+                --sp;
+                break;
             case Op::Ne:
                 if (in.arg == 0) {
                     st[sp] = st[sp] != 0;
@@ -474,8 +568,14 @@ double Expression::evaluate(std::span<const double> slots, const EvalContext* ct
                     --sp;
                 }
                 break;
-            case Op::And: st[sp - 1] = (st[sp - 1] != 0) && (st[sp] != 0); --sp; break;
-            case Op::Or: st[sp - 1] = (st[sp - 1] != 0) || (st[sp] != 0); --sp; break;
+            case Op::And:
+                st[sp - 1] = (st[sp - 1] != 0) && (st[sp] != 0);
+                --sp;
+                break;
+            case Op::Or:
+                st[sp - 1] = (st[sp - 1] != 0) || (st[sp] != 0);
+                --sp;
+                break;
             case Op::Call1:
                 st[sp] = apply1(in.fn, st[sp]);
                 checkDomain(st[sp], "a function");
@@ -485,24 +585,41 @@ double Expression::evaluate(std::span<const double> slots, const EvalContext* ct
                 --sp;
                 checkDomain(st[sp], "a function");
                 break;
-            case Op::Ran: st[sp] = st[sp] * uniform(); break;
+            case Op::Ran:
+                st[sp] = st[sp] * uniform();
+                break;
             case Op::Nran: {
                 // Box–Muller: two uniforms give one normal deviate.
                 double u1 = uniform(), u2 = uniform();
                 if (u1 < 1e-300) u1 = 1e-300;
-                double z = std::sqrt(-2.0 * std::log(u1)) * std::cos(2 * 3.14159265358979323846 * u2);
+                double z =
+                    std::sqrt(-2.0 * std::log(u1)) * std::cos(2 * 3.14159265358979323846 * u2);
                 st[sp - 1] = st[sp - 1] + st[sp] * z;
                 --sp;
                 break;
             }
             case Op::JumpIfFalse:
-                if (st[sp] == 0) { st[sp] = 0; pc = in.arg - 1; } else { --sp; }
+                if (st[sp] == 0) {
+                    st[sp] = 0;
+                    pc = in.arg - 1;
+                } else {
+                    --sp;
+                }
                 break;
             case Op::JumpIfTrue:
-                if (st[sp] != 0) { st[sp] = 1; pc = in.arg - 1; } else { --sp; }
+                if (st[sp] != 0) {
+                    st[sp] = 1;
+                    pc = in.arg - 1;
+                } else {
+                    --sp;
+                }
                 break;
-            case Op::Jump: pc = in.arg - 1; break;
-            case Op::Pop: --sp; break;
+            case Op::Jump:
+                pc = in.arg - 1;
+                break;
+            case Op::Pop:
+                --sp;
+                break;
         }
     }
     return sp >= 0 ? st[sp] : 0.0;

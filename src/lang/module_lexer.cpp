@@ -18,8 +18,7 @@ std::string describeByte(std::string_view text, std::size_t i) {
 }  // namespace
 
 bool tokenizeModules(std::string_view text, const SourceLocation& loc, int startColumn,
-                     SymbolTable& symbols, std::vector<ModuleToken>& out,
-                     DiagnosticList& diags) {
+                     SymbolTable& symbols, std::vector<ModuleToken>& out, DiagnosticList& diags) {
     auto where = [&](std::size_t i) {
         SourceLocation l = loc;
         l.column = startColumn + static_cast<int>(i);
@@ -90,7 +89,8 @@ bool tokenizeModules(std::string_view text, const SourceLocation& loc, int start
         if (c == '~' && i + 1 < text.size() &&
             (std::isalnum(static_cast<unsigned char>(text[i + 1])) || text[i + 1] == '_')) {
             std::size_t e = i + 1;
-            while (e < text.size() && (std::isalnum(static_cast<unsigned char>(text[e])) || text[e] == '_'))
+            while (e < text.size() &&
+                   (std::isalnum(static_cast<unsigned char>(text[e])) || text[e] == '_'))
                 ++e;
             tok.symbol = symbols.declare(text.substr(i, e - i));
             out.push_back(std::move(tok));

@@ -18,16 +18,15 @@ struct ArgumentText {
 
 struct ModuleToken {
     Symbol symbol = 0;
-    int column = 0;                   // 1-based column of the module name
+    int column = 0;  // 1-based column of the module name
     bool hasParens = false;
-    std::vector<ArgumentText> args;   // one per comma-separated argument
+    std::vector<ArgumentText> args;  // one per comma-separated argument
 };
 
 // `startColumn` is the column of text[0] on line `loc.line`. Returns false and reports
 // to `diags` when the text is malformed. `~name` (a predefined surface, as in cpfg) is one
 // module and is declared in `symbols` on first use.
 bool tokenizeModules(std::string_view text, const SourceLocation& loc, int startColumn,
-                     SymbolTable& symbols, std::vector<ModuleToken>& out,
-                     DiagnosticList& diags);
+                     SymbolTable& symbols, std::vector<ModuleToken>& out, DiagnosticList& diags);
 
 }  // namespace graftal

@@ -11,7 +11,6 @@
 namespace graftal {
 namespace parsing {
 
-
 std::string lower(std::string_view s) {
     std::string r(s);
     for (char& c : r) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -23,7 +22,9 @@ bool isBlank(std::string_view s) {
 }
 
 // Position of the first non-blank character, or npos.
-std::size_t firstNonBlank(std::string_view s) { return s.find_first_not_of(" \t\r\f\v"); }
+std::size_t firstNonBlank(std::string_view s) {
+    return s.find_first_not_of(" \t\r\f\v");
+}
 
 std::string_view trimView(std::string_view s) {
     std::size_t a = s.find_first_not_of(" \t\r\f\v");
@@ -34,15 +35,40 @@ std::string_view trimView(std::string_view s) {
 
 // The keywords a line may start with, in the spelling the messages use.
 const std::vector<std::string> kKeywords = {
-    "lsystem",         "derivation length", "axiom",       "ignore",  "consider",
-    "angle factor",    "angle increment",   "scale factor", "initial heading", "seed",
-    "step length",     "maximum depth",     "table",       "table schedule",  "environment",
-    "viewpoint",       "view reference point", "up vector", "projection",  "field of view",
-    "light direction", "background",        "line style",  "line width",  "width factor",
-    "tropism direction", "tropism elasticity", "initial elasticity", "elasticity",
-    "color map",       "colour map",        "surface",     "spline subdivisions",
+    "lsystem",
+    "derivation length",
+    "axiom",
+    "ignore",
+    "consider",
+    "angle factor",
+    "angle increment",
+    "scale factor",
+    "initial heading",
+    "seed",
+    "step length",
+    "maximum depth",
+    "table",
+    "table schedule",
+    "environment",
+    "viewpoint",
+    "view reference point",
+    "up vector",
+    "projection",
+    "field of view",
+    "light direction",
+    "background",
+    "line style",
+    "line width",
+    "width factor",
+    "tropism direction",
+    "tropism elasticity",
+    "initial elasticity",
+    "elasticity",
+    "color map",
+    "colour map",
+    "surface",
+    "spline subdivisions",
 };
-
 
 // `-->` wins; then the book's `→`; then `->` (not the `<-` `>` of a context like `<->`).
 Arrow findArrow(std::string_view s) {
@@ -57,9 +83,12 @@ Arrow findArrow(std::string_view s) {
 std::size_t findTopLevel(std::string_view s, char c, std::size_t from) {
     int depth = 0;
     for (std::size_t i = from; i < s.size(); ++i) {
-        if (s[i] == '(') ++depth;
-        else if (s[i] == ')') depth = std::max(0, depth - 1);
-        else if (s[i] == c && depth == 0) return i;
+        if (s[i] == '(')
+            ++depth;
+        else if (s[i] == ')')
+            depth = std::max(0, depth - 1);
+        else if (s[i] == c && depth == 0)
+            return i;
     }
     return std::string_view::npos;
 }
@@ -68,9 +97,12 @@ std::size_t findLastTopLevel(std::string_view s, char c) {
     int depth = 0;
     std::size_t found = std::string_view::npos;
     for (std::size_t i = 0; i < s.size(); ++i) {
-        if (s[i] == '(') ++depth;
-        else if (s[i] == ')') depth = std::max(0, depth - 1);
-        else if (s[i] == c && depth == 0) found = i;
+        if (s[i] == '(')
+            ++depth;
+        else if (s[i] == ')')
+            depth = std::max(0, depth - 1);
+        else if (s[i] == c && depth == 0)
+            found = i;
     }
     return found;
 }
@@ -123,7 +155,8 @@ bool Parser::isModuleDeclaration(std::string_view rest) {
     for (std::string_view kw : {"modules", "module"}) {
         if (rest.size() > kw.size() && lower(rest.substr(0, kw.size())) == kw &&
             std::isspace(static_cast<unsigned char>(rest[kw.size()])) &&
-            findArrow(rest).pos == std::string_view::npos && rest.find(':') == std::string_view::npos)
+            findArrow(rest).pos == std::string_view::npos &&
+            rest.find(':') == std::string_view::npos)
             return true;
     }
     return false;
@@ -170,7 +203,8 @@ void Parser::parseModuleDeclaration(const SourceLine& line, std::size_t start) {
     std::size_t p = start;
     while (p < t.size() && std::isalpha(static_cast<unsigned char>(t[p]))) ++p;  // keyword
     std::size_t end = t.find(';', p);
-    if (end == std::string_view::npos) end = t.size();
+    if (end == std::string_view::npos)
+        end = t.size();
     else if (!isBlank(t.substr(end + 1)))
         diags_.error(at(line, end + 1), "unexpected text after ';' in a module declaration");
     std::size_t i = p;
@@ -183,8 +217,10 @@ void Parser::parseModuleDeclaration(const SourceLine& line, std::size_t start) {
         }
         std::size_t s = i;
         if (!(std::isalpha(static_cast<unsigned char>(c)) || c == '_')) {
-            diags_.error(at(line, i), "expected a module name (letters, digits, '_') in "
-                                      "the declaration, found '" + std::string(1, c) + "'");
+            diags_.error(at(line, i),
+                         "expected a module name (letters, digits, '_') in "
+                         "the declaration, found '" +
+                             std::string(1, c) + "'");
             return;
         }
         while (i < end && (std::isalnum(static_cast<unsigned char>(t[i])) || t[i] == '_')) ++i;
@@ -256,9 +292,10 @@ void Parser::parseLine(const SourceLine& line) {
         if (looksLikeKeyword) {
             std::string list;
             for (const auto& k : kKeywords) list += (list.empty() ? "" : ", ") + k + ":";
-            diags_.error(at(line, start), "unknown keyword '" +
-                                              std::string(trimView(t.substr(start, colon - start))) +
-                                              ":'; expected one of " + list);
+            diags_.error(at(line, start),
+                         "unknown keyword '" +
+                             std::string(trimView(t.substr(start, colon - start))) +
+                             ":'; expected one of " + list);
             return;
         }
     }
@@ -300,24 +337,26 @@ bool Parser::constantValue(const SourceLine& line, std::size_t from, double& val
 
 void Parser::parseDirective(const SourceLine& line, const std::string& kw, std::size_t valueStart) {
     std::string_view value = std::string_view(line.text).substr(valueStart);
-    SourceLocation loc = at(line, valueStart + (firstNonBlank(value) == std::string_view::npos
-                                                    ? 0
-                                                    : firstNonBlank(value)));
+    SourceLocation loc =
+        at(line, valueStart +
+                     (firstNonBlank(value) == std::string_view::npos ? 0 : firstNonBlank(value)));
     double v = 0;
     if (kw == "lsystem") {
         ls_.name = std::string(trimView(value));
     } else if (kw == "derivation length") {
         if (!constantValue(line, valueStart, v)) return;
         if (v < 0 || v != std::floor(v) || v > 1e6) {
-            diags_.error(loc, "derivation length must be a whole number from 0 to 1000000, "
-                              "not " + formatNumber(v));
+            diags_.error(loc,
+                         "derivation length must be a whole number from 0 to 1000000, "
+                         "not " +
+                             formatNumber(v));
             return;
         }
         ls_.derivationLength = static_cast<int>(v);
     } else if (kw == "axiom") {
         if (sawAxiom_) {
-            diags_.error(loc, "a second axiom (the first is on line " +
-                                  std::to_string(axiomLine_) + ")");
+            diags_.error(
+                loc, "a second axiom (the first is on line " + std::to_string(axiomLine_) + ")");
             return;
         }
         sawAxiom_ = true;
@@ -368,7 +407,8 @@ void Parser::parseDirective(const SourceLine& line, const std::string& kw, std::
     } else if (kw == "table") {
         std::string name(trimView(value));
         if (section_ != Section::Main) {
-            diags_.error(loc, "tables hold the main productions, not decomposition or homomorphism");
+            diags_.error(loc,
+                         "tables hold the main productions, not decomposition or homomorphism");
             return;
         }
         if (name.empty()) {
@@ -440,7 +480,8 @@ void Parser::parseSchedule(const SourceLine& line, std::size_t valueStart) {
             ExpressionScope scope;
             scope.defines = &ls_.defines;
             DiagnosticList local;
-            Expression ex = compileExpression(trimView(t.substr(sp)), at(line, countCol), scope, local);
+            Expression ex =
+                compileExpression(trimView(t.substr(sp)), at(line, countCol), scope, local);
             for (const auto& d : local.items()) diags_.add(d);
             if (ex.empty()) return;
             steps = ex.evaluate({});
@@ -492,15 +533,14 @@ void Parser::parseAxiom(const SourceLine& line, std::size_t valueStart) {
 
 // An axiom or successor with unbalanced brackets is almost always a typo; say where.
 void Parser::checkBrackets(const std::vector<ModuleToken>& toks, const SourceLine& line,
-                   const char* what) {
+                           const char* what) {
     std::vector<int> open;
     for (const auto& t : toks) {
         if (t.symbol == '[') open.push_back(t.column);
         if (t.symbol == ']') {
             if (open.empty()) {
-                diags_.error(src_.at(line.number, t.column),
-                             std::string("unbalanced ']' in the ") + what +
-                                 ": no '[' is open here");
+                diags_.error(src_.at(line.number, t.column), std::string("unbalanced ']' in the ") +
+                                                                 what + ": no '[' is open here");
                 return;
             }
             open.pop_back();
@@ -565,9 +605,11 @@ LSystem loadLSystem(const std::filesystem::path& path, ParseOptions options) {
     if (options.fileName.empty()) options.fileName = path.string();
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))
-        throw Error(SourceLocation{path.string(), 0, 0}, "is a directory, expected an L-system file");
+        throw Error(SourceLocation{path.string(), 0, 0},
+                    "is a directory, expected an L-system file");
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(SourceLocation{path.string(), 0, 0}, "cannot open the file (does it exist?)");
+    if (!in)
+        throw Error(SourceLocation{path.string(), 0, 0}, "cannot open the file (does it exist?)");
     std::ostringstream ss;
     ss << in.rdbuf();
     return parseLSystem(ss.str(), options);

@@ -34,13 +34,13 @@ std::size_t findLastTopLevel(std::string_view s, char c);
 extern const std::vector<std::string> kKeywords;
 
 class Parser {
-public:
+  public:
     Parser(const SourceText& src, const ParseOptions& options, DiagnosticList& diags)
         : src_(src), options_(options), diags_(diags) {}
 
     LSystem run();
 
-private:
+  private:
     SourceLocation at(const SourceLine& line, std::size_t offset) const;
 
     void collectDeclarations();
@@ -86,7 +86,8 @@ private:
 
     void finish();
 
-    static bool samePattern(const std::vector<ModulePattern>& a, const std::vector<ModulePattern>& b);
+    static bool samePattern(const std::vector<ModulePattern>& a,
+                            const std::vector<ModulePattern>& b);
 
     void warnShadowedProductions();
 

@@ -9,8 +9,8 @@
 namespace graftal::parsing {
 
 bool Parser::parsePatterns(const SourceLine& line, std::size_t from, std::size_t to,
-                   std::vector<ModulePattern>& out, std::vector<std::string>& formals,
-                   const char* what, bool allowEmpty) {
+                           std::vector<ModulePattern>& out, std::vector<std::string>& formals,
+                           const char* what, bool allowEmpty) {
     std::string_view part = std::string_view(line.text).substr(from, to - from);
     if (trimView(part) == "*" && allowEmpty) return true;
     if (isBlank(part)) {
@@ -28,19 +28,21 @@ bool Parser::parsePatterns(const SourceLine& line, std::size_t from, std::size_t
         p.location = src_.at(line.number, t.column);
         for (const auto& a : t.args) {
             std::string_view name = trimView(a.text);
-            bool ok = !name.empty() && (std::isalpha(static_cast<unsigned char>(name[0])) ||
-                                        name[0] == '_');
+            bool ok = !name.empty() &&
+                      (std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_');
             for (char c : name)
                 ok = ok && (std::isalnum(static_cast<unsigned char>(c)) || c == '_');
             if (!ok) {
-                diags_.error(src_.at(line.number, a.column + static_cast<int>(a.text.find(name[0]))),
-                             std::string("a ") + what + " names its parameters (e.g. A(x,y)); '" +
-                                 std::string(name) + "' is not a name");
+                diags_.error(
+                    src_.at(line.number, a.column + static_cast<int>(a.text.find(name[0]))),
+                    std::string("a ") + what + " names its parameters (e.g. A(x,y)); '" +
+                        std::string(name) + "' is not a name");
                 return false;
             }
             if (std::find(formals.begin(), formals.end(), name) != formals.end()) {
-                diags_.error(src_.at(line.number, a.column),
-                             "parameter '" + std::string(name) + "' is bound twice in this production");
+                diags_.error(
+                    src_.at(line.number, a.column),
+                    "parameter '" + std::string(name) + "' is bound twice in this production");
                 return false;
             }
             formals.emplace_back(name);
@@ -83,8 +85,9 @@ void Parser::parseProduction(const SourceLine& line, Arrow arrow) {
     for (const auto* part : {&prod.left, &prod.predecessor}) {
         for (const auto& m : *part) {
             if (m.symbol == '[' || m.symbol == ']') {
-                diags_.error(m.location, "brackets may not appear in a predecessor or left "
-                                         "context");
+                diags_.error(m.location,
+                             "brackets may not appear in a predecessor or left "
+                             "context");
                 return;
             }
         }
@@ -100,8 +103,8 @@ void Parser::parseProduction(const SourceLine& line, Arrow arrow) {
         if (off == std::string_view::npos || trimView(cond) == "*") {
             // `: *` is cpfg's "no condition"
         } else {
-            Expression e = compileExpression(trimView(cond), at(line, condColon + 1 + off),
-                                             scope, diags_);
+            Expression e =
+                compileExpression(trimView(cond), at(line, condColon + 1 + off), scope, diags_);
             if (e.empty()) return;
             prod.condition = std::move(e);
         }
@@ -116,8 +119,7 @@ void Parser::parseProduction(const SourceLine& line, Arrow arrow) {
         std::string_view prob = rhs.substr(probColon + 1);
         std::size_t off = firstNonBlank(prob);
         if (off == std::string_view::npos) {
-            diags_.error(at(line, succFrom + probColon + 1),
-                         "expected a probability after ':'");
+            diags_.error(at(line, succFrom + probColon + 1), "expected a probability after ':'");
             return;
         }
         Expression e = compileExpression(trimView(prob), at(line, succFrom + probColon + 1 + off),
@@ -127,22 +129,23 @@ void Parser::parseProduction(const SourceLine& line, Arrow arrow) {
     }
     std::string_view succ = t.substr(succFrom, succTo - succFrom);
     if (isBlank(succ)) {
-        diags_.error(at(line, succFrom), "expected a successor after the arrow ('*' for "
-                                         "the empty string)");
+        diags_.error(at(line, succFrom),
+                     "expected a successor after the arrow ('*' for "
+                     "the empty string)");
         return;
     }
     if (trimView(succ) != "*") {
         std::vector<ModuleToken> toks;
-        if (!tokenizeModules(succ, at(line, succFrom), static_cast<int>(succFrom) + 1,
-                             ls_.symbols, toks, diags_))
+        if (!tokenizeModules(succ, at(line, succFrom), static_cast<int>(succFrom) + 1, ls_.symbols,
+                             toks, diags_))
             return;
         for (const auto& tok : toks) {
             SuccessorModule m;
             m.symbol = tok.symbol;
             for (const auto& a : tok.args) {
                 std::size_t lead = a.text.find_first_not_of(" \t");
-                Expression e = compileExpression(a.text, src_.at(line.number, a.column + static_cast<int>(lead)),
-                                                 scope, diags_);
+                Expression e = compileExpression(
+                    a.text, src_.at(line.number, a.column + static_cast<int>(lead)), scope, diags_);
                 if (e.empty()) return;
                 m.args.push_back(std::move(e));
             }
@@ -151,10 +154,10 @@ void Parser::parseProduction(const SourceLine& line, Arrow arrow) {
         checkBrackets(toks, line, "successor");
     }
     if (section_ != Section::Main && prod.hasContext()) {
-        diags_.error(prod.location, std::string(section_ == Section::Decomposition
-                                                    ? "decomposition"
-                                                    : "homomorphism") +
-                                        " productions are context-free: remove the context");
+        diags_.error(
+            prod.location,
+            std::string(section_ == Section::Decomposition ? "decomposition" : "homomorphism") +
+                " productions are context-free: remove the context");
         return;
     }
     int depth = 0;
@@ -170,9 +173,12 @@ void Parser::parseProduction(const SourceLine& line, Arrow arrow) {
         return;
     }
     prod.table = currentTable_;
-    if (section_ == Section::Decomposition) ls_.decomposition.push_back(std::move(prod));
-    else if (section_ == Section::Homomorphism) ls_.homomorphism.push_back(std::move(prod));
-    else ls_.productions.push_back(std::move(prod));
+    if (section_ == Section::Decomposition)
+        ls_.decomposition.push_back(std::move(prod));
+    else if (section_ == Section::Homomorphism)
+        ls_.homomorphism.push_back(std::move(prod));
+    else
+        ls_.productions.push_back(std::move(prod));
 }
 
 void Parser::resolveSchedule() {
@@ -203,7 +209,8 @@ void Parser::resolveSchedule() {
         ls_.schedule.push_back({static_cast<int>(it - ls_.tableNames.begin()), e.steps});
     }
     if (ls_.scheduleRepeats && !rawSchedule_.empty() && rawSchedule_.back().steps < 0)
-        diags_.error(rawSchedule_.back().location, "a repeating schedule needs a step count for every table");
+        diags_.error(rawSchedule_.back().location,
+                     "a repeating schedule needs a step count for every table");
 }
 
 void Parser::finish() {

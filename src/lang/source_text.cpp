@@ -9,14 +9,20 @@ namespace {
 // Length of the valid UTF-8 sequence at s[i], or 0 when it is not one.
 std::size_t utf8Length(std::string_view s, std::size_t i) {
     auto c = static_cast<unsigned char>(s[i]);
-    std::size_t n = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xE ? 3 : (c >> 3) == 0x1E ? 4 : 0;
+    std::size_t n = c < 0x80           ? 1
+                    : (c >> 5) == 0x6  ? 2
+                    : (c >> 4) == 0xE  ? 3
+                    : (c >> 3) == 0x1E ? 4
+                                       : 0;
     if (n == 0 || i + n > s.size()) return 0;
     for (std::size_t k = 1; k < n; ++k)
         if ((static_cast<unsigned char>(s[i + k]) & 0xC0) != 0x80) return 0;
     return n;
 }
 
-bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
+bool isSpace(char c) {
+    return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
+}
 
 }  // namespace
 
@@ -83,8 +89,8 @@ bool prepareSource(std::string_view bytes, const std::string& fileName, SourceTe
             for (char p : current)
                 if (!isSpace(p)) lineStart = false;
             bool spaceBefore = current.empty() || isSpace(current.back());
-            bool spaceAfter = i + 2 >= bytes.size() || isSpace(bytes[i + 2]) ||
-                              bytes[i + 2] == '\n';
+            bool spaceAfter =
+                i + 2 >= bytes.size() || isSpace(bytes[i + 2]) || bytes[i + 2] == '\n';
             if (lineStart || (spaceBefore && spaceAfter)) {
                 while (i < bytes.size() && bytes[i] != '\n') ++i;
                 --i;  // let the loop see the newline

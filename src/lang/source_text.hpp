@@ -11,8 +11,8 @@
 namespace graftal {
 
 struct SourceLine {
-    int number = 0;     // 1-based
-    std::string text;   // comments replaced by spaces
+    int number = 0;    // 1-based
+    std::string text;  // comments replaced by spaces
 };
 
 struct SourceText {

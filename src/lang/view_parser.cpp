@@ -35,8 +35,8 @@ bool Parser::vectorValue(const SourceLine& line, std::size_t from, Vec3& out) {
         scope.defines = &ls_.defines;
         DiagnosticList local;
         std::size_t lead = firstNonBlank(text.substr(a, b - a));
-        Expression e = compileExpression(piece, at(line, from + a + (lead == std::string_view::npos ? 0 : lead)),
-                                         scope, local);
+        Expression e = compileExpression(
+            piece, at(line, from + a + (lead == std::string_view::npos ? 0 : lead)), scope, local);
         for (const auto& d : local.items()) diags_.add(d);
         if (e.empty()) return false;
         v[k] = e.evaluate({});
@@ -49,7 +49,8 @@ bool Parser::vectorValue(const SourceLine& line, std::size_t from, Vec3& out) {
     return true;
 }
 
-bool Parser::parseViewSetting(const SourceLine& line, const std::string& kw, std::size_t valueStart) {
+bool Parser::parseViewSetting(const SourceLine& line, const std::string& kw,
+                              std::size_t valueStart) {
     ViewSettings& view = ls_.view;
     std::string_view value = trimView(std::string_view(line.text).substr(valueStart));
     std::size_t lead = firstNonBlank(std::string_view(line.text).substr(valueStart));
@@ -86,9 +87,13 @@ bool Parser::parseViewSetting(const SourceLine& line, const std::string& kw, std
     } else if (kw == "tropism elasticity" || kw == "initial elasticity" || kw == "elasticity") {
         if (constantValue(line, valueStart, d)) view.elasticity = d;
     } else if (kw == "projection") {
-        if (word == "parallel" || word == "orthographic") view.parallelProjection = true;
-        else if (word == "perspective") view.parallelProjection = false;
-        else diags_.error(loc, "projection is 'perspective' or 'parallel', not '" + std::string(value) + "'");
+        if (word == "parallel" || word == "orthographic")
+            view.parallelProjection = true;
+        else if (word == "perspective")
+            view.parallelProjection = false;
+        else
+            diags_.error(
+                loc, "projection is 'perspective' or 'parallel', not '" + std::string(value) + "'");
     } else if (kw == "field of view") {
         if (!constantValue(line, valueStart, d)) return true;
         if (d <= 0 || d >= 180) {
@@ -97,13 +102,18 @@ bool Parser::parseViewSetting(const SourceLine& line, const std::string& kw, std
         }
         view.fieldOfView = d;
     } else if (kw == "line style") {
-        if (word == "cylinder" || word == "cylinders" || word == "polygon") view.lineStyle = LineStyle::Cylinders;
-        else if (word == "lines" || word == "line" || word == "pixel") view.lineStyle = LineStyle::Lines;
-        else diags_.error(loc, "line style is 'cylinder' or 'lines', not '" + std::string(value) + "'");
+        if (word == "cylinder" || word == "cylinders" || word == "polygon")
+            view.lineStyle = LineStyle::Cylinders;
+        else if (word == "lines" || word == "line" || word == "pixel")
+            view.lineStyle = LineStyle::Lines;
+        else
+            diags_.error(loc,
+                         "line style is 'cylinder' or 'lines', not '" + std::string(value) + "'");
     } else if (kw == "spline subdivisions") {
         if (!constantValue(line, valueStart, d)) return true;
         if (d < 0 || d > 64 || d != std::floor(d)) {
-            diags_.error(loc, "spline subdivisions is a whole number from 0 (straight lines) to 64");
+            diags_.error(loc,
+                         "spline subdivisions is a whole number from 0 (straight lines) to 64");
             return true;
         }
         view.splineSubdivisions = static_cast<int>(d);
@@ -123,16 +133,20 @@ bool Parser::parseViewSetting(const SourceLine& line, const std::string& kw, std
         view.widthFactor = d;
     } else if (kw == "background") {
         std::string hex(value.substr(value.starts_with("#") ? 1 : 0));
-        bool ok = hex.size() == 6 && hex.find_first_not_of("0123456789abcdefABCDEF") == std::string::npos;
+        bool ok =
+            hex.size() == 6 && hex.find_first_not_of("0123456789abcdefABCDEF") == std::string::npos;
         if (!ok) {
             diags_.error(loc, "background is a colour #rrggbb");
             return true;
         }
         unsigned c = static_cast<unsigned>(std::stoul(hex, nullptr, 16));
-        view.background = Rgb{((c >> 16) & 255) / 255.0f, ((c >> 8) & 255) / 255.0f, (c & 255) / 255.0f};
+        view.background =
+            Rgb{((c >> 16) & 255) / 255.0f, ((c >> 8) & 255) / 255.0f, (c & 255) / 255.0f};
     } else if (kw == "color map" || kw == "colour map") {
-        if (value.empty()) diags_.error(loc, "expected a .map file name");
-        else view.colorMap = std::string(value);
+        if (value.empty())
+            diags_.error(loc, "expected a .map file name");
+        else
+            view.colorMap = std::string(value);
     } else if (kw == "surface") {
         // surface: NAME FILE [SCALE]
         std::vector<std::string> words;
@@ -146,7 +160,8 @@ bool Parser::parseViewSetting(const SourceLine& line, const std::string& kw, std
         }
         if (!cur.empty()) words.push_back(cur);
         if (words.size() < 2 || words.size() > 3) {
-            diags_.error(loc, "expected 'surface: NAME FILE [SCALE]', e.g. 'surface: l leaf.s 0.5'");
+            diags_.error(loc,
+                         "expected 'surface: NAME FILE [SCALE]', e.g. 'surface: l leaf.s 0.5'");
             return true;
         }
         SurfaceDeclaration s{words[0], words[1], 1, loc};

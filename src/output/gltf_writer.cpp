@@ -35,7 +35,7 @@ double linearFromSrgb(float c) {
 }
 
 class ModelBuilder {
-public:
+  public:
     ModelBuilder() {
         model_.asset.version = "2.0";
         model_.asset.generator = "graftal";
@@ -88,7 +88,7 @@ public:
         return std::move(model_);
     }
 
-private:
+  private:
     int addVectors(const std::vector<Vec3f>& source, const std::vector<std::uint32_t>& which,
                    bool bounds) {
         // Written straight into the buffer: a big plant's buffer is hundreds of megabytes.

@@ -69,9 +69,8 @@ void writeImage(const Scene& scene, const RenderOptions& o, const fs::path& path
                                            : "unknown image file extension '" + ext + "'") +
                                   "; use .svg, .png or .pdf");
     }
-    writeFileAtomically(path, [&](const fs::path& temporary) {
-        writeByFormat(*format, scene, o, temporary);
-    });
+    writeFileAtomically(
+        path, [&](const fs::path& temporary) { writeByFormat(*format, scene, o, temporary); });
 }
 
 fs::path temporaryPathBeside(const fs::path& target) {

@@ -81,7 +81,8 @@ double defaultLineWidth(const Scene& scene, const RenderOptions& o) {
     return defaultLineWidth(ink, !scene.segments.empty(), scene.bounds(), o);
 }
 
-double defaultLineWidth(double ink, bool anySegments, const Bounds& bounds, const RenderOptions& o) {
+double defaultLineWidth(double ink, bool anySegments, const Bounds& bounds,
+                        const RenderOptions& o) {
     if (o.lineWidth > 0) return o.lineWidth;
     const double base = std::clamp(std::min(o.width, o.height) / 600.0, 0.6, 2.0);
     if (!anySegments) return base;

@@ -32,7 +32,7 @@ inline Error fileError(const std::filesystem::path& path, const std::string& mes
 // temporary beside the target (rename is atomic only within one file system) and renamed
 // over the target by commit(). Destroyed uncommitted, after an error, it leaves nothing.
 class AtomicFile {
-public:
+  public:
     // `format` names the kind of file in messages ("OBJ").
     AtomicFile(std::filesystem::path target, std::string format)
         : target_(std::move(target)), format_(std::move(format)) {
@@ -73,7 +73,7 @@ public:
         committed_ = true;
     }
 
-private:
+  private:
     std::filesystem::path target_, temporary_;
     std::string format_;
     std::ofstream out_;
@@ -146,7 +146,7 @@ struct GroupVertices {
 };
 
 class VertexSplitter {
-public:
+  public:
     explicit VertexSplitter(const Mesh& mesh) : mesh_(mesh), local_(mesh.positions.size(), kNone) {}
 
     GroupVertices split(const ColorGroup& group) {
@@ -167,7 +167,7 @@ public:
         return out;
     }
 
-private:
+  private:
     static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
     const Mesh& mesh_;
     std::vector<std::uint32_t> local_;

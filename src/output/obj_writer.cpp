@@ -14,7 +14,7 @@ namespace {
 // Formatting millions of numbers through iostreams would dominate the time to write a big
 // plant; to_chars gives the shortest text that reads back as the same float.
 class TextBuffer {
-public:
+  public:
     explicit TextBuffer(mesh_file::AtomicFile& file) : file_(file) {
         text_.reserve(kFlushAt + 256);
     }
@@ -43,7 +43,7 @@ public:
         text_.clear();
     }
 
-private:
+  private:
     static constexpr std::size_t kFlushAt = 1 << 20;
 
     TextBuffer& flushIfFull() {

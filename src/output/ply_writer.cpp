@@ -18,7 +18,7 @@ namespace {
 
 // Fixed-size records assembled in memory and written in large blocks.
 class BinaryBuffer {
-public:
+  public:
     explicit BinaryBuffer(mesh_file::AtomicFile& file) : file_(file) {
         bytes_.reserve(kFlushAt + 64);
     }
@@ -38,7 +38,7 @@ public:
         bytes_.clear();
     }
 
-private:
+  private:
     static constexpr std::size_t kFlushAt = 1 << 20;
 
     mesh_file::AtomicFile& file_;

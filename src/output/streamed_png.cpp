@@ -38,9 +38,8 @@ struct StreamedPng::Impl {
     }
 };
 
-StreamedPng::StreamedPng(const RenderOptions& o, const Bounds& bounds, double ink,
-                         bool anySegments, float baseWidth, std::vector<Rgb> palette,
-                         std::filesystem::path path)
+StreamedPng::StreamedPng(const RenderOptions& o, const Bounds& bounds, double ink, bool anySegments,
+                         float baseWidth, std::vector<Rgb> palette, std::filesystem::path path)
     : impl_(std::make_unique<Impl>()) {
     Impl& m = *impl_;
     m.options = o;
@@ -50,7 +49,8 @@ StreamedPng::StreamedPng(const RenderOptions& o, const Bounds& bounds, double in
     m.palette = std::move(palette);
     m.path = std::move(path);
     if (o.width < 1 || o.height < 1 || o.width > 32767 || o.height > 32767)
-        throw Error(SourceLocation{m.path.string(), 0, 0}, "image size out of range (1 to 32767 per side)");
+        throw Error(SourceLocation{m.path.string(), 0, 0},
+                    "image size out of range (1 to 32767 per side)");
     m.surface = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, o.width, o.height);
     m.cr = cairo_create(m.surface);
     cairo_set_antialias(m.cr, o.antialias ? CAIRO_ANTIALIAS_DEFAULT : CAIRO_ANTIALIAS_NONE);
@@ -75,7 +75,8 @@ void StreamedPng::segment(const Segment& s) {
           std::abs(bx) < kMaxCoordinate && std::abs(by) < kMaxCoordinate))
         return;
     Rgb color = m.options.lineColor ? *m.options.lineColor : m.colorOf(s.color);
-    if (m.inPath > 0 && (!(color == m.runColor) || s.width != m.runWidth || m.inPath >= kSegmentsPerStroke))
+    if (m.inPath > 0 &&
+        (!(color == m.runColor) || s.width != m.runWidth || m.inPath >= kSegmentsPerStroke))
         m.stroke();
     if (m.inPath == 0) {
         m.runColor = color;
@@ -97,8 +98,10 @@ void StreamedPng::polygon(std::span<const Vec3> vertices, std::uint16_t color) {
     cairo_set_source_rgb(m.cr, c.r, c.g, c.b);
     for (std::size_t i = 0; i < vertices.size(); ++i) {
         double x = m.transform.x(vertices[i]), y = m.transform.y(vertices[i]);
-        if (i == 0) cairo_move_to(m.cr, x, y);
-        else cairo_line_to(m.cr, x, y);
+        if (i == 0)
+            cairo_move_to(m.cr, x, y);
+        else
+            cairo_line_to(m.cr, x, y);
     }
     cairo_close_path(m.cr);
     cairo_fill(m.cr);
@@ -112,7 +115,8 @@ void StreamedPng::finish() {
                     std::string("cannot draw the picture: ") + cairo_status_to_string(st));
     cairo_surface_flush(m.surface);
     writeFileAtomically(m.path, [&](const std::filesystem::path& temporary) {
-        if (auto st = cairo_surface_write_to_png(m.surface, temporary.c_str()); st != CAIRO_STATUS_SUCCESS)
+        if (auto st = cairo_surface_write_to_png(m.surface, temporary.c_str());
+            st != CAIRO_STATUS_SUCCESS)
             throw Error(SourceLocation{m.path.string(), 0, 0},
                         std::string("cannot write PNG: ") + cairo_status_to_string(st));
     });

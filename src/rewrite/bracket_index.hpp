@@ -11,7 +11,7 @@
 namespace graftal {
 
 class BracketIndex {
-public:
+  public:
     static constexpr std::uint32_t kNone = 0xFFFFFFFFu;
 
     // For each '[' the position of its ']' (or kNone if unclosed), for each ']' the
@@ -19,7 +19,7 @@ public:
     void build(std::span<const Symbol> symbols);
     std::uint32_t match(std::size_t i) const { return match_[i]; }
 
-private:
+  private:
     std::vector<std::uint32_t, UninitializedAllocator<std::uint32_t>> match_;
     std::vector<std::uint32_t> stack_;
 };

@@ -37,8 +37,8 @@ void rewriteRecursively(RewritingEngine& engine, ModuleString& s, int depth, int
     ModuleString next;
     std::vector<std::uint8_t> active, produced;
     for (int level = 0; level < depth; ++level) {
-        bool any = engine.step(s, next, stepNumber, 0, limit, level == 0 ? nullptr : &active,
-                               &produced);
+        bool any =
+            engine.step(s, next, stepNumber, 0, limit, level == 0 ? nullptr : &active, &produced);
         if (!any) break;
         std::swap(s, next);
         std::swap(active, produced);
@@ -56,7 +56,8 @@ Derivation::Derivation(const LSystem& lsystem, DerivationOptions options)
     unsigned threads = options.threads ? options.threads : defaultThreadCount();
     rules_ = std::make_unique<RewritingEngine>(lsystem, lsystem.productions, seed, threads);
     if (!lsystem.decomposition.empty())
-        decomposition_ = std::make_unique<RewritingEngine>(lsystem, lsystem.decomposition, seed, threads);
+        decomposition_ =
+            std::make_unique<RewritingEngine>(lsystem, lsystem.decomposition, seed, threads);
     if (rules_->parametric() && !current_->hasParameters()) {
         // Parametric strings always carry offsets, so every module reads the same way.
         current_->rawParamStart().assign(current_->size() + 1, 0);
@@ -84,8 +85,10 @@ static bool pruneCuts(const ModuleString& s, ModuleString& out) {
             int depth = 0;
             for (++i; i < s.size(); ++i) {
                 Symbol c = s.symbol(i);
-                if (c == '[') ++depth;
-                else if (c == ']' && depth-- == 0) break;
+                if (c == '[')
+                    ++depth;
+                else if (c == ']' && depth-- == 0)
+                    break;
             }
             if (i >= s.size()) break;
         }
@@ -105,13 +108,14 @@ void Derivation::answerQueries(int stepNumber) {
     ModuleString& s = *current_;
     if (!containsSymbol(s, kQueryE, kQueryU)) return;
     // The turtle sees the string after the homomorphism; query modules keep their order.
-    ModuleString seen = lsystem_.homomorphism.empty() ? ModuleString{}
-                                                      : applyHomomorphism(lsystem_, s, options_);
+    ModuleString seen =
+        lsystem_.homomorphism.empty() ? ModuleString{} : applyHomomorphism(lsystem_, s, options_);
     const ModuleString& walked = lsystem_.homomorphism.empty() ? s : seen;
     std::vector<bool> wanted(lsystem_.symbols.size(), false);
     for (Symbol q = kQueryE; q <= kQueryU; ++q) wanted[q] = true;
     std::vector<TurtleFrame> frames;
-    traceTurtle(lsystem_, walked, wanted, [&](std::size_t, const TurtleFrame& f) { frames.push_back(f); });
+    traceTurtle(lsystem_, walked, wanted,
+                [&](std::size_t, const TurtleFrame& f) { frames.push_back(f); });
 
     std::vector<std::size_t> positions;
     for (std::size_t i = 0; i < s.size(); ++i)
@@ -119,7 +123,8 @@ void Derivation::answerQueries(int stepNumber) {
     if (positions.size() != frames.size())
         throw Error(SourceLocation{lsystem_.file, 0, 0},
                     "the homomorphism changes the number of query modules (?E ?P ?H ?L ?U) "
-                    "in step " + std::to_string(stepNumber) + "; they must map to themselves");
+                    "in step " +
+                        std::to_string(stepNumber) + "; they must map to themselves");
 
     auto& params = s.rawParams();
     const auto& starts = s.paramStarts();
@@ -131,11 +136,21 @@ void Derivation::answerQueries(int stepNumber) {
         if (!starts.empty()) p = {params.data() + starts[i], starts[i + 1] - starts[i]};
         const Vec3* v = nullptr;
         switch (s.symbol(i)) {
-            case kQueryP: v = &f.position; break;
-            case kQueryH: v = &f.heading; break;
-            case kQueryL: v = &f.left; break;
-            case kQueryU: v = &f.up; break;
-            default: requests.push_back({i, f, p}); continue;
+            case kQueryP:
+                v = &f.position;
+                break;
+            case kQueryH:
+                v = &f.heading;
+                break;
+            case kQueryL:
+                v = &f.left;
+                break;
+            case kQueryU:
+                v = &f.up;
+                break;
+            default:
+                requests.push_back({i, f, p});
+                continue;
         }
         // Rotations leave 1e-17-sized noise where a component is 0; snap it so that
         // derived strings print the 0 a user expects.

@@ -5,17 +5,15 @@
 #include <cctype>
 #include <cmath>
 
+#include "environment_detail.hpp"
 #include "graftal/expression.hpp"
 #include "graftal/lsystem.hpp"
-#include "environment_detail.hpp"
 
 namespace graftal {
 
 // Shared by the environment_*.cpp files. No private header declares them, so each of those
 // files repeats the declarations it uses; the definitions live here.
 namespace environment_detail {
-
-
 
 std::vector<EnvironmentLine> splitWords(const EnvironmentLine& line) {
     std::vector<EnvironmentLine> words;

@@ -5,12 +5,11 @@
 #include <cmath>
 #include <limits>
 
+#include "environment_detail.hpp"
 #include "graftal/environment.hpp"
 #include "graftal/lsystem.hpp"
-#include "environment_detail.hpp"
 
 namespace graftal {
-
 
 namespace {
 

@@ -6,12 +6,11 @@
 #include <optional>
 #include <unordered_map>
 
+#include "environment_detail.hpp"
 #include "graftal/environment.hpp"
 #include "graftal/lsystem.hpp"
-#include "environment_detail.hpp"
 
 namespace graftal {
-
 
 namespace {
 

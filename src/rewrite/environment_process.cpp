@@ -17,12 +17,11 @@
 #include <filesystem>
 #include <thread>
 
+#include "environment_detail.hpp"
 #include "graftal/environment.hpp"
 #include "graftal/lsystem.hpp"
-#include "environment_detail.hpp"
 
 namespace graftal {
-
 
 namespace {
 

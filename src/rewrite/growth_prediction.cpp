@@ -39,8 +39,9 @@ BigCount BigCount::times(std::uint64_t k) const {
     for (std::size_t j = 0; j < factor.limbs_.size(); ++j) {
         std::uint64_t carry = 0;
         for (std::size_t i = 0; i < limbs_.size() || carry; ++i) {
-            std::uint64_t cur = r.limbs_[i + j] + carry +
-                                (i < limbs_.size() ? std::uint64_t(limbs_[i]) * factor.limbs_[j] : 0);
+            std::uint64_t cur =
+                r.limbs_[i + j] + carry +
+                (i < limbs_.size() ? std::uint64_t(limbs_[i]) * factor.limbs_[j] : 0);
             r.limbs_[i + j] = static_cast<std::uint32_t>(cur % kBase);
             carry = cur / kBase;
         }
@@ -77,7 +78,8 @@ std::optional<std::uint64_t> BigCount::toUint64() const {
     // 2^64 - 1 = 18 446744073 709551615 in base-10^9 limbs.
     if (limbs_.size() > 3) return std::nullopt;
     std::uint64_t low = 0;
-    for (std::size_t i = std::min<std::size_t>(limbs_.size(), 2); i-- > 0;) low = low * kBase + limbs_[i];
+    for (std::size_t i = std::min<std::size_t>(limbs_.size(), 2); i-- > 0;)
+        low = low * kBase + limbs_[i];
     if (limbs_.size() < 3) return low;
     std::uint64_t high = limbs_[2];
     if (high > 18 || (high == 18 && low > 446744073709551615ull)) return std::nullopt;
@@ -89,7 +91,8 @@ namespace {
 // Why a string's growth cannot be read off its productions alone; empty when it can.
 std::string unpredictable(const LSystem& ls) {
     if (ls.hasContext()) return "context-sensitive productions make counts depend on the string";
-    if (ls.hasMultiModulePredecessor()) return "multi-module predecessors make counts depend on the string";
+    if (ls.hasMultiModulePredecessor())
+        return "multi-module predecessors make counts depend on the string";
     if (!ls.decomposition.empty()) return "decomposition is not part of the prediction";
     if (ls.usesCut()) return "the cut symbol % makes counts depend on the string";
     if (!ls.environment.empty()) return "an environment makes counts depend on the simulation";
@@ -117,7 +120,8 @@ GrowthPrediction predictGrowth(const LSystem& ls, int steps) {
         std::vector<std::pair<Symbol, std::uint64_t>> counts;
         double weight = 1;
     };
-    std::vector<std::vector<std::vector<Choice>>> choices(tables, std::vector<std::vector<Choice>>(n));
+    std::vector<std::vector<std::vector<Choice>>> choices(tables,
+                                                          std::vector<std::vector<Choice>>(n));
     for (std::size_t t = 0; t < tables; ++t) {
         for (const auto& p : ls.productions) {
             if (p.table >= 0 && static_cast<std::size_t>(p.table) != t) continue;
@@ -186,8 +190,10 @@ GrowthPrediction predictGrowth(const LSystem& ls, int steps) {
     }
     g.exact = !stochastic;
     g.expected = stochastic;
-    if (stochastic) g.modules.clear();
-    else g.symbolsAtEnd = exact;
+    if (stochastic)
+        g.modules.clear();
+    else
+        g.symbolsAtEnd = exact;
     return g;
 }
 

@@ -4,8 +4,8 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <sstream>
 #include <new>
+#include <sstream>
 
 #include <sys/mman.h>
 
@@ -14,7 +14,9 @@ namespace graftal {
 namespace {
 constexpr std::size_t kLargeBlock = std::size_t(4) << 20;
 constexpr std::size_t kHugePage = std::size_t(2) << 20;
-std::size_t roundToHugePages(std::size_t b) { return (b + kHugePage - 1) / kHugePage * kHugePage; }
+std::size_t roundToHugePages(std::size_t b) {
+    return (b + kHugePage - 1) / kHugePage * kHugePage;
+}
 }  // namespace
 
 void* allocateLarge(std::size_t bytes) {
@@ -58,9 +60,8 @@ Symbol SymbolTable::declare(std::string_view name) {
     names_.emplace_back(name);
     ids_.emplace(std::string(name), id);
     byLength_.push_back(id);
-    std::stable_sort(byLength_.begin(), byLength_.end(), [this](Symbol a, Symbol b) {
-        return names_[a].size() > names_[b].size();
-    });
+    std::stable_sort(byLength_.begin(), byLength_.end(),
+                     [this](Symbol a, Symbol b) { return names_[a].size() > names_[b].size(); });
     return id;
 }
 

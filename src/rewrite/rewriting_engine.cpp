@@ -18,7 +18,6 @@ constexpr std::int32_t kConsumed = -2;  // part of a multi-module predecessor al
 // Below this many modules a step is not worth splitting across threads.
 constexpr std::size_t kParallelThreshold = 1 << 16;
 
-
 bool arityMatches(const ModulePattern& p, const ModuleString& s, std::size_t j) {
     return p.formals.size() == s.params(j).size();
 }
@@ -95,9 +94,9 @@ void RewritingEngine::checkLimit(int stepNumber, std::size_t modules, std::size_
     if (total > static_cast<double>(limit) || params > 0xFFFFFFFFull ||
         (needBrackets_ && modules > 0xFFFFFFFEull)) {
         throw Error(SourceLocation{ls_.file, 0, 0},
-                    "derivation step " + std::to_string(stepNumber) +
-                        " would make a string of " + std::to_string(modules) + " modules (" +
-                        formatBytes(bytes) + ", " + formatBytes(total) +
+                    "derivation step " + std::to_string(stepNumber) + " would make a string of " +
+                        std::to_string(modules) + " modules (" + formatBytes(bytes) + ", " +
+                        formatBytes(total) +
                         " with the previous step), more than the memory limit of " +
                         formatBytes(static_cast<double>(limit)) +
                         "; lower the derivation length (-n) or raise --memory-limit");
@@ -108,7 +107,8 @@ bool RewritingEngine::step(const ModuleString& cur, ModuleString& next, int step
                            std::size_t memoryLimit, const std::vector<std::uint8_t>* activeIn,
                            std::vector<std::uint8_t>* activeOut) {
     table = std::clamp(table, 0, static_cast<int>(tableCount_) - 1);
-    if (fast_ && !activeIn && !activeOut) return stepFast(cur, next, stepNumber, table, memoryLimit);
+    if (fast_ && !activeIn && !activeOut)
+        return stepFast(cur, next, stepNumber, table, memoryLimit);
     return stepGeneric(cur, next, stepNumber, table, memoryLimit, activeIn, activeOut);
 }
 
@@ -253,7 +253,8 @@ bool RewritingEngine::matches(const Production& p, const ModuleString& s, std::s
             return false;
     int slot = 0;
     if (!p.left.empty() && !matchLeft(p, s, i, slots, slot)) return false;
-    for (std::size_t q = 0; q < p.predecessor.size(); ++q) bind(p.predecessor[q], s, i + q, slots, slot);
+    for (std::size_t q = 0; q < p.predecessor.size(); ++q)
+        bind(p.predecessor[q], s, i + q, slots, slot);
     if (!p.right.empty() && !matchRight(p, s, i + p.predecessor.size(), slots, slot)) return false;
     return true;
 }
@@ -265,7 +266,8 @@ bool RewritingEngine::matches(const Production& p, const ModuleString& s, std::s
     auto args = s.params(i);
     if (!args.empty()) {
         module += '(';
-        for (std::size_t k = 0; k < args.size(); ++k) module += (k ? "," : "") + formatNumber(args[k]);
+        for (std::size_t k = 0; k < args.size(); ++k)
+            module += (k ? "," : "") + formatNumber(args[k]);
         module += ')';
     }
     if (!ds.empty())
@@ -308,7 +310,8 @@ std::int32_t RewritingEngine::choose(const ModuleString& s, std::size_t i, std::
             }
         }
         if (sum <= 0) return kIdentity;
-        double u = uniformAt(seed_, static_cast<std::uint64_t>(stepNumber), position, 1u << 20) * sum;
+        double u =
+            uniformAt(seed_, static_cast<std::uint64_t>(stepNumber), position, 1u << 20) * sum;
         std::size_t last = k;
         for (std::size_t r = k; r < cands.size(); ++r) {
             if (weights[r] <= 0) continue;
@@ -443,8 +446,10 @@ bool RewritingEngine::stepGeneric(const ModuleString& cur, ModuleString& next, i
                 continue;
             }
             const Production& p = productions_[static_cast<std::size_t>(k)];
-            if (activeOut) std::fill(activeOut->begin() + static_cast<std::ptrdiff_t>(o),
-                                     activeOut->begin() + static_cast<std::ptrdiff_t>(o + p.successor.size()), 1);
+            if (activeOut)
+                std::fill(activeOut->begin() + static_cast<std::ptrdiff_t>(o),
+                          activeOut->begin() + static_cast<std::ptrdiff_t>(o + p.successor.size()),
+                          1);
             if (!parametricOut) {
                 for (const auto& m : p.successor) outSyms[o++] = m.symbol;
                 continue;

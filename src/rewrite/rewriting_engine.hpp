@@ -13,7 +13,7 @@
 namespace graftal {
 
 class RewritingEngine {
-public:
+  public:
     RewritingEngine(const LSystem& ls, const std::vector<Production>& productions,
                     std::uint64_t seed, unsigned threads);
 
@@ -37,7 +37,7 @@ public:
     void expandOne(const ModuleString& s, std::size_t i, std::uint64_t position, int stepNumber,
                    int table, ModuleString& out);
 
-private:
+  private:
     struct Draws;
     bool stepFast(const ModuleString& cur, ModuleString& next, int stepNumber, int table,
                   std::size_t limit);
@@ -50,8 +50,8 @@ private:
     bool matches(const Production& p, const ModuleString& s, std::size_t i, double* slots) const;
     bool matchLeft(const Production& p, const ModuleString& s, std::size_t i, double* slots,
                    int& slot) const;
-    bool matchRight(const Production& p, const ModuleString& s, std::size_t from,
-                    double* slots, int& slot) const;
+    bool matchRight(const Production& p, const ModuleString& s, std::size_t from, double* slots,
+                    int& slot) const;
     double evaluate(const Expression& e, const double* slots, Draws& draws) const;
     [[noreturn]] void rethrowAt(const class Error& err, const ModuleString& s, std::size_t i,
                                 int stepNumber) const;

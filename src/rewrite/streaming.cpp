@@ -41,7 +41,8 @@ void streamDerivation(const LSystem& ls, int steps, ModuleSink& sink,
     // A symbol no table ever rewrites goes straight to the sink; only random choices need
     // the positions it would have taken in the deeper strings.
     std::vector<bool> fixed(ls.symbols.size());
-    for (std::size_t s = 0; s < fixed.size(); ++s) fixed[s] = !engine.rewrites(static_cast<Symbol>(s));
+    for (std::size_t s = 0; s < fixed.size(); ++s)
+        fixed[s] = !engine.rewrites(static_cast<Symbol>(s));
 
     std::vector<ModuleString> level(static_cast<std::size_t>(steps) + 1);
     std::vector<std::size_t> cursor(level.size(), 0);
@@ -66,8 +67,8 @@ void streamDerivation(const LSystem& ls, int steps, ModuleSink& sink,
         std::uint64_t pos = position[d]++;
         ModuleString& next = level[d + 1];
         next.clear();
-        engine.expandOne(here, i, pos, static_cast<int>(d) + 1, ls.tableForStep(static_cast<int>(d) + 1),
-                         next);
+        engine.expandOne(here, i, pos, static_cast<int>(d) + 1,
+                         ls.tableForStep(static_cast<int>(d) + 1), next);
         cursor[d + 1] = 0;
         ++d;
     }

@@ -9,7 +9,7 @@ namespace {
 // Adapts the turtle to the module stream.
 template <class Sink>
 class TurtleStream : public ModuleSink {
-public:
+  public:
     TurtleStream(const LSystem& ls, Sink& sink, StreamedMeasure* measure)
         : machine_(ls, sink), measure_(measure) {}
     void module(Symbol s, std::span<const double> params) override {
@@ -21,14 +21,14 @@ public:
     }
     void finish() { machine_.finish(); }
 
-private:
+  private:
     turtle::TurtleMachine<Sink> machine_;
     StreamedMeasure* measure_;
     std::size_t index_ = 0;
 };
 
 class MeasureSink {
-public:
+  public:
     explicit MeasureSink(StreamedMeasure& m) : m_(m) {}
     std::uint32_t segment(const Segment& s) {
         m_.bounds.extend(s.a);
@@ -44,24 +44,24 @@ public:
     void baseWidth(float w) { m_.baseWidth = w; }
     void finish(bool is3D) { m_.is3D = is3D; }
 
-private:
+  private:
     StreamedMeasure& m_;
 };
 
 class CountingSink : public ModuleSink {
-public:
+  public:
     explicit CountingSink(StreamedMeasure& m) : m_(m) {}
     void module(Symbol s, std::span<const double>) override {
         ++m_.modules;
         ++m_.symbolCounts[s];
     }
 
-private:
+  private:
     StreamedMeasure& m_;
 };
 
 class PictureSink {
-public:
+  public:
     explicit PictureSink(StreamedPng& png) : png_(png) {}
     std::uint32_t segment(const Segment& s) {
         png_.segment(s);
@@ -72,7 +72,7 @@ public:
     void baseWidth(float) {}
     void finish(bool) {}
 
-private:
+  private:
     StreamedPng& png_;
 };
 

@@ -24,49 +24,101 @@
 namespace graftal::turtle {
 
 enum class TurtleOp : std::uint8_t {
-    None, Forward, Move, ForwardNoVertex, MoveNoVertex, RecordVertex, TurnLeft, TurnRight,
-    PitchDown, PitchUp, RollLeft, RollRight, TurnAround, RollToVertical, Push, Pop,
-    PolygonBegin, PolygonEnd, WidthDown, WidthUp, ColorNext, ColorPrevious, Surface,
+    None,
+    Forward,
+    Move,
+    ForwardNoVertex,
+    MoveNoVertex,
+    RecordVertex,
+    TurnLeft,
+    TurnRight,
+    PitchDown,
+    PitchUp,
+    RollLeft,
+    RollRight,
+    TurnAround,
+    RollToVertical,
+    Push,
+    Pop,
+    PolygonBegin,
+    PolygonEnd,
+    WidthDown,
+    WidthUp,
+    ColorNext,
+    ColorPrevious,
+    Surface,
 };
 
 inline constexpr double kPi = 3.14159265358979323846;
 
 inline TurtleOp opFor(Symbol s) {
     switch (s) {
-        case 'F': return TurtleOp::Forward;
-        case 'f': return TurtleOp::Move;
-        case 'G': return TurtleOp::ForwardNoVertex;
-        case 'g': return TurtleOp::MoveNoVertex;
-        case '.': return TurtleOp::RecordVertex;
-        case '+': return TurtleOp::TurnLeft;
-        case '-': return TurtleOp::TurnRight;
-        case '&': return TurtleOp::PitchDown;
-        case '^': return TurtleOp::PitchUp;
-        case '\\': return TurtleOp::RollLeft;
-        case '/': return TurtleOp::RollRight;
-        case '|': return TurtleOp::TurnAround;
-        case '$': return TurtleOp::RollToVertical;
-        case '[': return TurtleOp::Push;
-        case ']': return TurtleOp::Pop;
-        case '{': return TurtleOp::PolygonBegin;
-        case '}': return TurtleOp::PolygonEnd;
-        case '!': return TurtleOp::WidthDown;
-        case '#': return TurtleOp::WidthUp;
+        case 'F':
+            return TurtleOp::Forward;
+        case 'f':
+            return TurtleOp::Move;
+        case 'G':
+            return TurtleOp::ForwardNoVertex;
+        case 'g':
+            return TurtleOp::MoveNoVertex;
+        case '.':
+            return TurtleOp::RecordVertex;
+        case '+':
+            return TurtleOp::TurnLeft;
+        case '-':
+            return TurtleOp::TurnRight;
+        case '&':
+            return TurtleOp::PitchDown;
+        case '^':
+            return TurtleOp::PitchUp;
+        case '\\':
+            return TurtleOp::RollLeft;
+        case '/':
+            return TurtleOp::RollRight;
+        case '|':
+            return TurtleOp::TurnAround;
+        case '$':
+            return TurtleOp::RollToVertical;
+        case '[':
+            return TurtleOp::Push;
+        case ']':
+            return TurtleOp::Pop;
+        case '{':
+            return TurtleOp::PolygonBegin;
+        case '}':
+            return TurtleOp::PolygonEnd;
+        case '!':
+            return TurtleOp::WidthDown;
+        case '#':
+            return TurtleOp::WidthUp;
         case '\'':
-        case ';': return TurtleOp::ColorNext;
-        case ',': return TurtleOp::ColorPrevious;
-        default: return TurtleOp::None;
+        case ';':
+            return TurtleOp::ColorNext;
+        case ',':
+            return TurtleOp::ColorPrevious;
+        default:
+            return TurtleOp::None;
     }
 }
 
-inline Vec3 operator+(Vec3 a, Vec3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-inline Vec3 operator-(Vec3 a, Vec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-inline Vec3 operator*(Vec3 a, double k) { return {a.x * k, a.y * k, a.z * k}; }
-inline double dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline Vec3 operator+(Vec3 a, Vec3 b) {
+    return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+inline Vec3 operator-(Vec3 a, Vec3 b) {
+    return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+inline Vec3 operator*(Vec3 a, double k) {
+    return {a.x * k, a.y * k, a.z * k};
+}
+inline double dot(Vec3 a, Vec3 b) {
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 inline Vec3 cross(Vec3 a, Vec3 b) {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-inline double length(Vec3 a) { return std::sqrt(dot(a, a)); }
+inline double length(Vec3 a) {
+    return std::sqrt(dot(a, a));
+}
 inline Vec3 normalized(Vec3 a) {
     double n = length(a);
     return n > 0 ? a * (1 / n) : a;
@@ -103,7 +155,7 @@ using Visitor = std::function<void(std::size_t, const TurtleFrame&)>;
 //   void baseWidth(float), void finish(bool is3D)
 template <class Sink>
 class TurtleMachine {
-public:
+  public:
     TurtleMachine(const LSystem& ls, Sink& sink) : ls_(ls), sink_(sink) {
         const ViewSettings& v = ls.view;
         for (std::size_t s = 0; s < ops_.size(); ++s)
@@ -149,12 +201,11 @@ public:
         if (!polygons_.empty())
             throw Error(SourceLocation{ls_.file, 0, 0},
                         "the derived string leaves a '{' open (module " +
-                            std::to_string(polygonOpenedAt_.back()) +
-                            "): expected a matching '}'");
+                            std::to_string(polygonOpenedAt_.back()) + "): expected a matching '}'");
         sink_.finish(is3D_);
     }
 
-private:
+  private:
     // Turns a toward b by the angle argument, or by delta (cos and sin precomputed).
     void turn(Vec3& a, Vec3& b, std::span<const double> args, double sign) {
         if (args.empty()) {
@@ -198,8 +249,8 @@ private:
         if (!polygons_.empty()) {
             if (vertex) polygons_.back().push_back(state_.position);
         } else if (draw) {
-            state_.lastSegment = sink_.segment(Segment{from, state_.position, state_.width,
-                                                       state_.color, state_.lastSegment, state_.up});
+            state_.lastSegment = sink_.segment(Segment{
+                from, state_.position, state_.width, state_.color, state_.lastSegment, state_.up});
         } else {
             state_.lastSegment = kNoSegment;  // a move starts a new axis
         }
@@ -212,28 +263,51 @@ private:
 
     void apply(TurtleOp op, std::span<const double> args, std::size_t index, Symbol symbol) {
         switch (op) {
-            case TurtleOp::None: break;
-            case TurtleOp::Forward: forward(lengthArg(args), true, true); break;
-            case TurtleOp::Move: forward(lengthArg(args), false, true); break;
-            case TurtleOp::ForwardNoVertex:
-                if (polygons_.empty()) forward(lengthArg(args), true, false);
-                else forward(lengthArg(args), false, false);
+            case TurtleOp::None:
                 break;
-            case TurtleOp::MoveNoVertex: forward(lengthArg(args), false, false); break;
+            case TurtleOp::Forward:
+                forward(lengthArg(args), true, true);
+                break;
+            case TurtleOp::Move:
+                forward(lengthArg(args), false, true);
+                break;
+            case TurtleOp::ForwardNoVertex:
+                if (polygons_.empty())
+                    forward(lengthArg(args), true, false);
+                else
+                    forward(lengthArg(args), false, false);
+                break;
+            case TurtleOp::MoveNoVertex:
+                forward(lengthArg(args), false, false);
+                break;
             case TurtleOp::RecordVertex:
                 if (!polygons_.empty()) polygons_.back().push_back(state_.position);
                 break;
-            case TurtleOp::TurnLeft: turn(state_.heading, state_.left, args, turnSign_); break;
-            case TurtleOp::TurnRight: turn(state_.heading, state_.left, args, -turnSign_); break;
+            case TurtleOp::TurnLeft:
+                turn(state_.heading, state_.left, args, turnSign_);
+                break;
+            case TurtleOp::TurnRight:
+                turn(state_.heading, state_.left, args, -turnSign_);
+                break;
             case TurtleOp::TurnAround:
                 state_.heading = state_.heading * -1.0;
                 state_.left = state_.left * -1.0;
                 break;
-            case TurtleOp::PitchDown: turn(state_.heading, state_.up, args, -1); break;
-            case TurtleOp::PitchUp: turn(state_.heading, state_.up, args, 1); break;
-            case TurtleOp::RollLeft: turn(state_.left, state_.up, args, -1); break;
-            case TurtleOp::RollRight: turn(state_.left, state_.up, args, 1); break;
-            case TurtleOp::RollToVertical: rollToVertical(); break;
+            case TurtleOp::PitchDown:
+                turn(state_.heading, state_.up, args, -1);
+                break;
+            case TurtleOp::PitchUp:
+                turn(state_.heading, state_.up, args, 1);
+                break;
+            case TurtleOp::RollLeft:
+                turn(state_.left, state_.up, args, -1);
+                break;
+            case TurtleOp::RollRight:
+                turn(state_.left, state_.up, args, 1);
+                break;
+            case TurtleOp::RollToVertical:
+                rollToVertical();
+                break;
             case TurtleOp::Push: {
                 stack_.push_back(state_);
                 state_.lastSegment = kNoSegment;  // a branch is a new axis
@@ -263,22 +337,28 @@ private:
                 polygonOpenedAt_.pop_back();
                 break;
             case TurtleOp::WidthDown:
-                state_.width = args.empty() ? state_.width * static_cast<float>(ls_.view.widthFactor)
-                                            : static_cast<float>(args[0]);
+                state_.width = args.empty()
+                                   ? state_.width * static_cast<float>(ls_.view.widthFactor)
+                                   : static_cast<float>(args[0]);
                 break;
             case TurtleOp::WidthUp:
-                state_.width = args.empty() ? state_.width / static_cast<float>(ls_.view.widthFactor)
-                                            : static_cast<float>(args[0]);
+                state_.width = args.empty()
+                                   ? state_.width / static_cast<float>(ls_.view.widthFactor)
+                                   : static_cast<float>(args[0]);
                 break;
             case TurtleOp::ColorNext:
                 state_.color = args.empty() ? static_cast<std::uint16_t>(state_.color + 1)
                                             : static_cast<std::uint16_t>(args[0]);
                 break;
             case TurtleOp::ColorPrevious:
-                if (!args.empty()) state_.color = static_cast<std::uint16_t>(args[0]);
-                else if (state_.color > 0) --state_.color;
+                if (!args.empty())
+                    state_.color = static_cast<std::uint16_t>(args[0]);
+                else if (state_.color > 0)
+                    --state_.color;
                 break;
-            case TurtleOp::Surface: placeSurface(symbol, args); break;
+            case TurtleOp::Surface:
+                placeSurface(symbol, args);
+                break;
         }
     }
 
@@ -319,10 +399,9 @@ private:
     std::vector<std::size_t> polygonOpenedAt_;
 };
 
-
 // Stores everything: what interpret() returns.
 class SceneSink {
-public:
+  public:
     explicit SceneSink(Scene& scene) : scene_(scene) {}
     std::uint32_t segment(const Segment& s) {
         scene_.segments.push_back(s);
@@ -338,13 +417,13 @@ public:
     void baseWidth(float w) { scene_.baseWidth = w; }
     void finish(bool is3D) { scene_.is3D = is3D; }
 
-private:
+  private:
     Scene& scene_;
 };
 
 // Keeps nothing: the turtle only walks.
 class NullSink {
-public:
+  public:
     std::uint32_t segment(const Segment&) { return kNoSegment; }
     void polygon(std::span<const Vec3>, std::uint16_t) {}
     void surface(const std::string&, const SurfaceInstance&) {}
