@@ -53,6 +53,9 @@ class Error : public std::runtime_error {
     Error(SourceLocation loc, const std::string& message);
 
     const std::vector<Diagnostic>& diagnostics() const { return diagnostics_; }
+    // The messages alone, without locations, joined by "; " (for re-raising an error under
+    // another location, e.g. a file's real name instead of its temporary's).
+    std::string messages() const;
 
   private:
     std::vector<Diagnostic> diagnostics_;

@@ -68,6 +68,16 @@ static std::string joinMessages(const std::vector<Diagnostic>& ds) {
 
 Error::Error(Diagnostic d) : Error(std::vector<Diagnostic>{std::move(d)}) {}
 
+std::string Error::messages() const {
+    if (diagnostics_.empty()) return what();
+    std::string s;
+    for (const auto& d : diagnostics_) {
+        if (!s.empty()) s += "; ";
+        s += d.message;
+    }
+    return s;
+}
+
 Error::Error(std::vector<Diagnostic> ds)
     : std::runtime_error(joinMessages(ds)), diagnostics_(std::move(ds)) {}
 

@@ -47,18 +47,6 @@ void writeByFormat(ImageFormat format, const Scene& scene, const RenderOptions& 
     }
 }
 
-// The writers name the file they were given, which here is the temporary; the user knows
-// only the target.
-std::string messageOf(const Error& e) {
-    if (e.diagnostics().empty()) return e.what();
-    std::string s;
-    for (const Diagnostic& d : e.diagnostics()) {
-        if (!s.empty()) s += "; ";
-        s += d.message;
-    }
-    return s;
-}
-
 }  // namespace
 
 void writeImage(const Scene& scene, const RenderOptions& o, const fs::path& path) {
@@ -99,7 +87,7 @@ void writeFileAtomically(const fs::path& path, const std::function<void(const fs
         fs::remove(temporary, ec);
         if (!e.diagnostics().empty() && e.diagnostics().front().location.file == path.string())
             throw;
-        throw fileError(path, messageOf(e));
+        throw fileError(path, e.messages());
     } catch (...) {
         fs::remove(temporary, ec);
         throw;

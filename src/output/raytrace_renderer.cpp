@@ -106,16 +106,6 @@ Error fileError(const fs::path& path, const std::string& message) {
     return Error(SourceLocation{path.string(), 0, 0}, message);
 }
 
-std::string messageOf(const Error& e) {
-    if (e.diagnostics().empty()) return e.what();
-    std::string s;
-    for (const Diagnostic& d : e.diagnostics()) {
-        if (!s.empty()) s += "; ";
-        s += d.message;
-    }
-    return s;
-}
-
 const char* embreeErrorName(RTCError code) {
     switch (code) {
         case RTC_ERROR_NONE:
@@ -675,7 +665,7 @@ void renderRaytraced(const Mesh& mesh, const RaytraceOptions& options, const fs:
     try {
         pixels = renderRaytracedPixels(mesh, options);
     } catch (const Error& e) {
-        throw fileError(path, messageOf(e));
+        throw fileError(path, e.messages());
     }
 
     writeFileAtomically(path, [&](const fs::path& temporary) {

@@ -13,6 +13,7 @@
 
 #include "graftal/diagnostics.hpp"
 #include "graftal/output.hpp"
+#include "stroke_order.hpp"
 
 namespace graftal {
 
@@ -142,35 +143,6 @@ void writePolygons(const Scene& scene, const RenderOptions& o, const ImageTransf
         svg.maybeFlush();
     }
     if (groupOpen) s += "</g>\n";
-}
-
-// Within a stretch of segments of one colour the stroking order cannot be seen (an opaque
-// colour over itself), so such a stretch is sorted by width, stably: a plant whose width
-// changes at every branch then gets one <path> per width instead of one per segment.
-// Across colours scene order is kept, since there it decides which line is on top. The
-// Cairo writer orders the same way so that both look alike.
-std::vector<std::uint32_t> strokeOrder(const Scene& scene, const RenderOptions& o) {
-    const auto& segs = scene.segments;
-    std::vector<std::uint32_t> order(segs.size());
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
-    auto colorOf = [&](std::uint32_t i) {
-        return o.lineColor ? *o.lineColor : scene.colorOf(segs[i].color);
-    };
-    std::size_t begin = 0;
-    while (begin < order.size()) {
-        const Rgb color = colorOf(order[begin]);
-        bool mixedWidths = false;
-        std::size_t end = begin + 1;
-        for (; end < order.size() && colorOf(order[end]) == color; ++end)
-            mixedWidths = mixedWidths || segs[order[end]].width != segs[order[begin]].width;
-        if (mixedWidths)
-            std::stable_sort(
-                order.begin() + static_cast<std::ptrdiff_t>(begin),
-                order.begin() + static_cast<std::ptrdiff_t>(end),
-                [&](std::uint32_t a, std::uint32_t b) { return segs[a].width < segs[b].width; });
-        begin = end;
-    }
-    return order;
 }
 
 // One <path> per run of segments with the same colour and width; inside it a new subpath
