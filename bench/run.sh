@@ -1,0 +1,179 @@
+#!/usr/bin/env bash
+# The benchmark of graftal: `make bench`, or directly
+#
+#   bench/run.sh [BUILD_DIR]        (default: build)
+#
+# Runs graftal (BUILD_DIR/graftal, already built in Release) and the npm package
+# `lindenmayer` side by side on the L-systems in bench/lsystems/, plus a memcpy probe for
+# the memory-bandwidth floor, and prints one table (bench/report.py) that it also writes
+# into docs/performance.md between <!-- bench:begin --> and <!-- bench:end -->.
+# Never part of `make test`. See bench/README.md.
+#
+# Settings (environment variables):
+#   BENCH_RUNS=5              graftal runs per row (fewer for slow rows: see BENCH_BUDGET)
+#   BENCH_BUDGET=15           stop repeating a graftal row once its runs took this many s
+#   BENCH_PEER_RUNS=3         lindenmayer runs per row (repeated only while under 20 s)
+#   BENCH_PEER_TIMEOUT=120    seconds lindenmayer gets per row before "timeout"
+#   BENCH_STREAM_TIMEOUT=150  seconds the streamed Koch n=11 render gets
+#   BENCH_PEER=1              0: skip lindenmayer (and its npm install)
+#   BENCH_DOC=docs/performance.md   where the table goes ("" for nowhere)
+#
+# Results (JSON per row, the table, the PNG) go to BUILD_DIR/bench/results/.
+# lindenmayer is installed with npm into bench/.peers/ (git-ignored), never committed.
+
+set -uo pipefail
+
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+root=$(dirname "$here")
+build=${1:-build}
+case $build in /*) ;; *) build="$PWD/$build" ;; esac
+
+RUNS=${BENCH_RUNS:-5}
+BUDGET=${BENCH_BUDGET:-15}
+PEER_RUNS=${BENCH_PEER_RUNS:-3}
+PEER_TIMEOUT=${BENCH_PEER_TIMEOUT:-120}
+STREAM_TIMEOUT=${BENCH_STREAM_TIMEOUT:-150}
+PEER=${BENCH_PEER:-1}
+DOC=${BENCH_DOC-$root/docs/performance.md}
+PEER_VERSION=1.5.4
+
+graftal="$build/graftal"
+results="$build/bench/results"
+ls_dir="$here/lsystems"
+peers="$here/.peers"
+
+say() { printf '%s\n' "$*" >&2; }
+die() { say "bench: $*"; exit 1; }
+
+[ -x "$graftal" ] || die "no graftal at $graftal (build it first: make build, or cmake --build $build)"
+command -v python3 >/dev/null || die "python3 is needed for the measurements and the table"
+command -v g++ >/dev/null || die "g++ is needed for the memcpy probe"
+
+rm -rf "$results"
+mkdir -p "$results"
+start=$(date +%s)
+
+measure() {  # measure OUT RUNS BUDGET TIMEOUT CMD...
+    local out=$1 runs=$2 budget=$3 timeout=$4
+    shift 4
+    python3 "$here/report.py" measure --out "$results/$out.json" --runs "$runs" \
+        --budget "$budget" --timeout "$timeout" -- "$@"
+}
+
+# ---- what this graftal can do ------------------------------------------------------------
+quiet=()
+if "$graftal" stats --help 2>/dev/null | grep -q -- '--quiet'; then quiet=(--quiet); fi
+have_stream=0
+if "$graftal" render --help 2>/dev/null | grep -q -- '--stream'; then have_stream=1; fi
+
+# ---- the peer ----------------------------------------------------------------------------
+peer_ok=0
+peer_reason=""
+if [ "$PEER" = 1 ]; then
+    if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
+        peer_reason="not available (node/npm not installed)"
+    else
+        if [ ! -f "$peers/node_modules/lindenmayer/package.json" ]; then
+            say "bench: installing lindenmayer@$PEER_VERSION with npm into bench/.peers/"
+            mkdir -p "$peers"
+            npm install --prefix "$peers" --no-audit --no-fund --silent \
+                "lindenmayer@$PEER_VERSION" >/dev/null 2>"$results/npm.log" ||
+                peer_reason="not available (npm install failed: see $results/npm.log)"
+        fi
+        [ -z "$peer_reason" ] && [ -f "$peers/node_modules/lindenmayer/package.json" ] && peer_ok=1
+        [ $peer_ok = 1 ] || peer_reason=${peer_reason:-"not available (npm install failed)"}
+    fi
+else
+    peer_reason="skipped (BENCH_PEER=0)"
+fi
+
+# ---- environment -------------------------------------------------------------------------
+commit=$(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)
+git -C "$root" diff --quiet HEAD 2>/dev/null || commit="$commit + uncommitted changes"
+load_before=$(cut -d' ' -f1-3 /proc/loadavg)
+python3 - "$results/env.json" <<EOF
+import json, os, platform, subprocess, sys, time
+def sh(c):
+    try: return subprocess.run(c, shell=True, capture_output=True, text=True).stdout.strip()
+    except Exception: return ""
+mem = sh("awk '/MemTotal/ {printf \"%.0f GiB\", \$2/1048576}' /proc/meminfo")
+cpu = sh("lscpu | sed -n 's/^Model name: *//p' | head -1") or platform.processor()
+json.dump({
+  "date": time.strftime("%Y-%m-%d %H:%M %Z"), "cpu": cpu, "cores": os.cpu_count(),
+  "memory": mem, "load_before": "$load_before", "graftal_commit": "$commit",
+  "build_dir": os.path.relpath("$build", "$root"),
+  "graftal_flags": "stats ${quiet[*]:-(no --quiet)}; render --stream $([ $have_stream = 1 ] && echo available || echo 'not available')",
+  "node": sh("node --version"),
+  "peer_version": "$PEER_VERSION" if $peer_ok else "$peer_reason",
+}, open(sys.argv[1], "w"), indent=1)
+EOF
+
+# ---- 6. the bandwidth floor --------------------------------------------------------------
+say "bench: memcpy probe"
+g++ -O2 -std=c++17 -o "$build/bench/memcpy_probe" "$here/memcpy_probe.cpp" ||
+    die "cannot build bench/memcpy_probe.cpp"
+# Koch island n = 8: 124,630,747 modules, 2 bytes each.
+measure memcpy 1 0 120 "$build/bench/memcpy_probe" $((124630747 * 2)) 7
+
+# ---- graftal -----------------------------------------------------------------------------
+# row key | file | n
+rows=(
+    "koch8|koch-island.l|8"
+    "abop16|abop-1.24d.l|16"
+    "hogeweg70|hogeweg-1.31a.l|70"
+    "honda23|honda-2.6a.l|23"
+)
+for r in "${rows[@]}"; do
+    IFS='|' read -r key file n <<<"$r"
+    say "bench: graftal $file n=$n"
+    measure "$key.graftal" "$RUNS" "$BUDGET" 600 \
+        "$graftal" stats "$ls_dir/$file" -n "$n" --no-geometry "${quiet[@]}"
+done
+say "bench: graftal koch-island.l n=8 with the 2D turtle"
+measure interp8.graftal "$RUNS" "$BUDGET" 600 \
+    "$graftal" stats "$ls_dir/koch-island.l" -n 8 "${quiet[@]}"
+
+# ---- lindenmayer -------------------------------------------------------------------------
+peer_rows=("koch8|koch|8" "abop16|abop124d|16" "hogeweg70|hogeweg|70" "honda23|honda|23"
+           "interp8|koch|8|--interpret")
+for r in "${peer_rows[@]}"; do
+    IFS='|' read -r key system n flag <<<"$r"
+    if [ $peer_ok != 1 ]; then
+        echo "$peer_reason" >"$results/$key.peer.unavailable"
+        continue
+    fi
+    say "bench: lindenmayer $system n=$n ${flag:-} (up to ${PEER_TIMEOUT} s)"
+    measure "$key.peer" "$PEER_RUNS" 20 "$PEER_TIMEOUT" \
+        node --max-old-space-size=16000 "$here/lindenmayer_run.mjs" "$system" "$n" ${flag:+"$flag"}
+done
+# Koch n=11 has 6.4e10 modules: past the 2^29 - 24 characters a V8 string can hold.
+echo "n/a (JS strings stop at 2^29 − 24 symbols)" >"$results/stream11.peer.unavailable"
+
+# ---- 7. streamed Koch n=11 to PNG --------------------------------------------------------
+if [ $have_stream = 1 ]; then
+    say "bench: graftal render koch-island.l -n 11 --stream (up to ${STREAM_TIMEOUT} s)"
+    png="$results/koch-n11.png"
+    measure stream11.graftal 1 0 "$STREAM_TIMEOUT" \
+        "$graftal" render "$ls_dir/koch-island.l" -n 11 --stream -o "$png" "${quiet[@]}"
+    if grep -q '"rc": 0' "$results/stream11.graftal.json" && [ ! -s "$png" ]; then
+        echo "failed: no PNG written" >"$results/stream11.graftal.unavailable"
+    fi
+else
+    echo "not available (graftal render has no --stream)" >"$results/stream11.graftal.unavailable"
+fi
+
+# ---- the table ---------------------------------------------------------------------------
+load_after=$(cut -d' ' -f1-3 /proc/loadavg)
+python3 - "$results/env.json" "$load_after" "$(( $(date +%s) - start ))" <<'EOF'
+import json, sys
+p = sys.argv[1]
+env = json.load(open(p))
+env["load_after"] = sys.argv[2]
+env["bench_seconds"] = int(sys.argv[3])
+json.dump(env, open(p, "w"), indent=1)
+EOF
+say ""
+say "bench: done in $(( $(date +%s) - start )) s; results in $results"
+echo
+python3 "$here/report.py" report --results "$results" --json "$results/summary.json" \
+    ${DOC:+--doc "$DOC"}
