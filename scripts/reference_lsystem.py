@@ -435,7 +435,7 @@ def derive_strings(name, n=None):
 
 
 def check_book():
-    """Compare with the strings printed in the seed (book) text. Returns failures."""
+    """Compare with the strings printed in the book (book) text. Returns failures."""
     failures = []
     checks = []
 
@@ -462,7 +462,7 @@ def check_book():
     expect("Sec 3.1 internode lengths 1,1,2,3,5,8",
            [len(w) for w in derive_strings("sec3.1-fibonacci-internode.l", 5)],
            [1, 1, 2, 3, 5, 8])
-    # Ch. 3.4 hormone diffusion. The seed prints baaaaaaaaa, bbaaaaaaaaa, bbbaaaaaaaa,
+    # Ch. 3.4 hormone diffusion. The book prints baaaaaaaaa, bbaaaaaaaaa, bbbaaaaaaaa,
     # bbbbaaaaaaaa, bbbbbaaaaa: the number of a's is garbled in the transcription (the
     # axiom baaaaaaaa has 9 cells, and a DOL step never changes the length here); the
     # leading b's 1, 2, 3, 4, 5 are what the L-system produces.

@@ -159,7 +159,7 @@ TEST(Models, EveryModelFileDrawsAndStaysSmall) {
 
 TEST(Models, LilyOfTheValleyPrintedSequence) {
     LSystem ls = example("fig3.7-lily-of-the-valley.l");
-    // seed 000, 3.3.1: A, I[IF0]A, I[IF1]I[IF0]A, I[IF2]I[IF1]I[IF0]A,
+    // LSFP, 3.3.1: A, I[IF0]A, I[IF1]I[IF0]A, I[IF2]I[IF1]I[IF0]A,
     // I[IF3]I[IF2]I[IF1]I[IF0]A (F_i is F(i)).
     EXPECT_EQ(str(ls, 0), "A");
     EXPECT_EQ(str(ls, 1), "I[IF(0)]A");
@@ -180,7 +180,7 @@ TEST(Models, LilyOfTheValleyPrintedSequence) {
 
 TEST(Models, SiggraphRacemeWithElongatingInternodesPrintedSequence) {
     LSystem ls = example("siggraph-raceme-elongating-internodes.l");
-    // seed 002, 4.1: A, I0[I0F0]A, I1[I1F1]I0[I0F0]A, I2[I2F2]I1[I1F1]I0[I0F0]A,
+    // the SIGGRAPH '88 paper, 4.1: A, I0[I0F0]A, I1[I1F1]I0[I0F0]A, I2[I2F2]I1[I1F1]I0[I0F0]A,
     // I3[I3F3]I2[I2F2]I1[I1F1]I0[I0F0]A
     EXPECT_EQ(str(ls, 0), "A");
     EXPECT_EQ(str(ls, 1), "I(0)[I(0)F(0)]A");
@@ -383,7 +383,7 @@ struct SignalModel {
     int m, n, u, v, d;
     // The book: T_k = k (un - vm)/(n - v) + d n/(n - v).
     double bookT(int k) const { return (k * (u * n - v * m) + d * n) / double(n - v); }
-    // The book's l_k with its misprint corrected (seed 000 prints -k/n (m-u)/(n-v) +
+    // The book's l_k with its misprint corrected (LSFP prints -k/n (m-u)/(n-v) +
     // d/(n-v); solving its two equations gives (d - k(m-u))/(n-v)).
     double bookL(int k) const { return (d - k * (m - u)) / double(n - v); }
     // Exact discrete flowering step of lateral k in this L-system: S0 appears at the
@@ -653,7 +653,7 @@ TEST(Models, SiggraphSubapicalGrowth) {
 }
 
 TEST(Models, SiggraphSignalPropagation) {
-    // (c), the topological system (seed 000, 3.5.1; lost from seed 002's text)
+    // (c), the topological system (LSFP 3.5.1; lost from the SIGGRAPH '88 paper's text)
     LSystem c =
         graftal::testing::parse("Lsystem: 1\naxiom: J[I]I[I]I[I]I\nJ < I --> J\nendlsystem\n");
     EXPECT_EQ(graftal::testing::derived(c, 1), "J[J]J[I]I[I]I");
@@ -678,7 +678,7 @@ TEST(Models, SiggraphSignalPropagation) {
 }
 
 // ---------------------------------------------------------------------------------------
-// The lecture notes' examples (seed 001).
+// The lecture notes' examples (the L-systems lecture notes).
 
 TEST(Models, LectureParametricPlantPrintedDerivation) {
     LSystem ls = example("lecture-parametric-plant.l");
