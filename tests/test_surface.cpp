@@ -74,10 +74,6 @@ void expectNear(const Vec3& a, const Vec3& b, double eps = 1e-12) {
     EXPECT_NEAR(a.z, b.z, eps);
 }
 
-double length(const Vec3& v) {
-    return std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
-}
-
 // A directory of its own under the system temporary directory, removed afterwards.
 class TempDir {
   public:

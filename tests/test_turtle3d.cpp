@@ -33,13 +33,6 @@ void expectVec(const Vec3& a, const Vec3& b, double tol = 1e-12) {
     EXPECT_NEAR(a.z, b.z, tol);
 }
 
-double dot(Vec3 a, Vec3 b) {
-    return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-Vec3 cross(Vec3 a, Vec3 b) {
-    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-
 }  // namespace
 
 TEST(Turtle3D, InitialFrameHeadsUpWithLeftToMinusX) {

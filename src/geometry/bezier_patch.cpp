@@ -49,14 +49,6 @@ Partials partials(const BezierPatch& p, double s, double t) {
     return r;
 }
 
-Vec3 cross(const Vec3& a, const Vec3& b) {
-    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-
-double length(const Vec3& v) {
-    return std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
-}
-
 // The largest distance of a control point from the first: the patch's scale, against which
 // "a derivative vanishes" is judged.
 double extent(const BezierPatch& p) {

@@ -13,19 +13,6 @@ namespace graftal {
 
 namespace {
 
-Vec3 operator-(const Vec3& a, const Vec3& b) {
-    return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-Vec3 operator*(double s, const Vec3& a) {
-    return {s * a.x, s * a.y, s * a.z};
-}
-double dot(const Vec3& a, const Vec3& b) {
-    return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-double length(const Vec3& a) {
-    return std::sqrt(dot(a, a));
-}
-
 struct Obstacle {
     enum class Kind { Sphere, Box, Plane };
     Kind kind = Kind::Sphere;

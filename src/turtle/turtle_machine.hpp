@@ -101,29 +101,6 @@ inline TurtleOp opFor(Symbol s) {
     }
 }
 
-inline Vec3 operator+(Vec3 a, Vec3 b) {
-    return {a.x + b.x, a.y + b.y, a.z + b.z};
-}
-inline Vec3 operator-(Vec3 a, Vec3 b) {
-    return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-inline Vec3 operator*(Vec3 a, double k) {
-    return {a.x * k, a.y * k, a.z * k};
-}
-inline double dot(Vec3 a, Vec3 b) {
-    return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-inline Vec3 cross(Vec3 a, Vec3 b) {
-    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-inline double length(Vec3 a) {
-    return std::sqrt(dot(a, a));
-}
-inline Vec3 normalized(Vec3 a) {
-    double n = length(a);
-    return n > 0 ? a * (1 / n) : a;
-}
-
 // Rotates v about the unit axis k by `radians` (Rodrigues).
 inline Vec3 rotateAbout(Vec3 v, Vec3 k, double radians) {
     double c = std::cos(radians), s = std::sin(radians);
