@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "graftal/derivation.hpp"
 #include "graftal/growth.hpp"
@@ -331,19 +332,27 @@ int runStats(const InputOptions& in, bool geometry, bool predict) {
     }
     ModuleString modules = derive(l.lsystem, l.steps, derivationOptions(in));
     endProgressLine();
-    std::vector<std::uint64_t> counts(l.lsystem.symbols.size(), 0);
-    for (Symbol s : modules.symbols()) ++counts[s];
+    // Counts and bounds only: the turtle walks without storing any geometry. Without a
+    // homomorphism that walk also counts the symbols, so the string is read once.
+    std::optional<StreamedMeasure> m;
+    if (geometry)
+        m = measureModules(l.lsystem,
+                           l.lsystem.homomorphism.empty()
+                               ? modules
+                               : applyHomomorphism(l.lsystem, modules, derivationOptions(in)));
+    std::vector<std::uint64_t> counts;
+    if (m && l.lsystem.homomorphism.empty()) {
+        counts = m->symbolCounts;
+    } else {
+        counts.assign(l.lsystem.symbols.size(), 0);
+        for (Symbol s : modules.symbols()) ++counts[s];
+    }
     j["modules"] = modules.size();
     j["symbols"] = symbolsJson(l.lsystem.symbols, counts);
-    if (geometry) {
-        // Counts and bounds only: the turtle walks without storing any geometry.
-        StreamedMeasure m = measureModules(
-            l.lsystem, l.lsystem.homomorphism.empty()
-                           ? modules
-                           : applyHomomorphism(l.lsystem, modules, derivationOptions(in)));
-        j["segments"] = m.segments;
-        j["polygons"] = m.polygons;
-        Bounds b = m.bounds;
+    if (m) {
+        j["segments"] = m->segments;
+        j["polygons"] = m->polygons;
+        Bounds b = m->bounds;
         if (b.empty()) b.extend(Vec3{});  // nothing drawn: the turtle's start
         j["bbox"] = {{"min", point(b.min)}, {"max", point(b.max)}};
     }
