@@ -59,6 +59,11 @@ StreamedMeasure measureModules(const LSystem& lsystem, const ModuleString& modul
 // The Scene interpret(derive(...)) would give, built from a streamed derivation.
 Scene interpretStreamed(const LSystem& lsystem, int steps, const DerivationOptions& options = {});
 
+// True when renderStreamedPng draws this derivation from subtree summaries: a picture with
+// far more segments than pixels, whose subtrees smaller than a pixel are drawn as one
+// stroke each, so that its time grows with the image rather than with the string.
+bool streamedPictureIsSummarised(const LSystem& lsystem, int steps);
+
 // A 2D PNG of the derivation drawn while streaming (two passes: measure, then draw);
 // memory stays proportional to the derivation depth and the image.
 void renderStreamedPng(const LSystem& lsystem, int steps, const DerivationOptions& options,

@@ -79,7 +79,8 @@ DerivationOptions derivationOptions(const InputOptions& in) {
     return opts;
 }
 
-bool chooseStreaming(const Loaded& l, const InputOptions& in, bool canStream, bool countGeometry) {
+bool chooseStreaming(const Loaded& l, const InputOptions& in, bool canStream, bool countGeometry,
+                     bool pixelBound) {
     std::string obstacle = streamingObstacle(l.lsystem);
     if (in.stream) {
         if (!obstacle.empty())
@@ -108,7 +109,7 @@ bool chooseStreaming(const Loaded& l, const InputOptions& in, bool canStream, bo
     if (bytes <= static_cast<double>(in.memoryLimit)) return false;
     std::string size =
         g.exact ? g.modules.back().toString() : "about " + formatNumber(std::round(last));
-    if (canStream && obstacle.empty() && last > streamLimit)
+    if (canStream && obstacle.empty() && last > streamLimit && !pixelBound)
         obstacle = "more than --stream-limit " + formatNumber(streamLimit) + " modules";
     if (canStream && obstacle.empty()) {
         note(in, "the string would have " + size +

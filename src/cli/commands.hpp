@@ -59,9 +59,11 @@ Loaded loadInput(const InputOptions& in);
 DerivationOptions derivationOptions(const InputOptions& in);
 // Whether to stream: when --stream asks (an error if the L-system cannot be streamed), or
 // when the predicted string would not fit the memory limit and `canStream` (then a note
-// says so). When it would not fit and cannot stream, refuses before allocating.
+// says so). When it would not fit and cannot stream, refuses before allocating. A streamed
+// run longer than --stream-limit is refused unless `pixelBound` (a picture whose time
+// grows with its pixels, not with the string).
 bool chooseStreaming(const Loaded& l, const InputOptions& in, bool canStream,
-                     bool countGeometry = false);
+                     bool countGeometry = false, bool pixelBound = false);
 void note(const InputOptions& in, const std::string& message);
 void endProgressLine();
 

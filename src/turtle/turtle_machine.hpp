@@ -174,6 +174,10 @@ class TurtleMachine {
         if (op != TurtleOp::None) apply(op, args, index, s);
     }
 
+    // The state itself, for a walk that jumps over subtrees whose motion it knows
+    // (subtree_summaries.hpp).
+    TurtleState& state() { return state_; }
+
     void finish() {
         if (!polygons_.empty())
             throw Error(SourceLocation{ls_.file, 0, 0},
