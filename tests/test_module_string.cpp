@@ -52,3 +52,16 @@ TEST(FormatNumber, IntegersHaveNoDecimalPoint) {
     EXPECT_EQ(formatNumber(0.1 + 0.2), "0.30000000000000004");
     EXPECT_EQ(formatNumber(1e15), "1e+15");
 }
+
+TEST(ModuleString, CountSymbolsAgreesWithCountingOneByOne) {
+    ModuleString s;
+    std::vector<std::uint64_t> expected(140, 0);
+    std::uint32_t x = 12345;
+    for (int i = 0; i < 1'500'003; ++i) {
+        x = x * 1664525u + 1013904223u;
+        Symbol sym = static_cast<Symbol>((x >> 16) % 140);
+        s.push(sym);
+        ++expected[sym];
+    }
+    for (unsigned threads : {1u, 2u, 3u, 7u}) EXPECT_EQ(countSymbols(s, 140, threads), expected);
+}

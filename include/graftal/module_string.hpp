@@ -124,6 +124,11 @@ class ModuleString {
     ParamBuffer params_;
 };
 
+// How many modules of each symbol `s` has, indexed by symbol id (`symbolCount` entries),
+// counted in parallel with `threads` threads (0: all cores).
+std::vector<std::uint64_t> countSymbols(const ModuleString& s, std::size_t symbolCount,
+                                        unsigned threads = 0);
+
 // Shortest decimal text that reads back as the same double; integers without a point.
 std::string formatNumber(double v);
 // "190.7 MiB": binary units, as --memory-limit reads them (2G is 2 GiB).

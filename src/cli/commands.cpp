@@ -345,8 +345,7 @@ int runStats(const InputOptions& in, bool geometry, bool predict) {
     if (m && l.lsystem.homomorphism.empty()) {
         counts = m->symbolCounts;
     } else {
-        counts.assign(l.lsystem.symbols.size(), 0);
-        for (Symbol s : modules.symbols()) ++counts[s];
+        counts = countSymbols(modules, l.lsystem.symbols.size(), in.threads);
     }
     j["modules"] = modules.size();
     j["symbols"] = symbolsJson(l.lsystem.symbols, counts);

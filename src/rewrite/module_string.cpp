@@ -9,6 +9,8 @@
 
 #include <sys/mman.h>
 
+#include "parallel.hpp"
+
 namespace graftal {
 
 namespace {
@@ -162,6 +164,31 @@ std::string ModuleString::toString(const SymbolTable& table) const {
     std::ostringstream os;
     print(os, table);
     return std::move(os).str();
+}
+
+std::vector<std::uint64_t> countSymbols(const ModuleString& s, std::size_t symbolCount,
+                                        unsigned threads) {
+    std::span<const Symbol> syms = s.symbols();
+    std::size_t chunks = syms.size() < (1u << 20) ? 1 : (threads ? threads : defaultThreadCount());
+    // Four tallies per chunk: a string of few symbols would otherwise increment the same
+    // counter back to back, each increment waiting for the previous one's store.
+    std::vector<std::vector<std::uint64_t>> tallies(chunks,
+                                                    std::vector<std::uint64_t>(4 * symbolCount));
+    forEachChunk(syms.size(), chunks, [&](std::size_t c, std::size_t b, std::size_t e) {
+        std::uint64_t* t = tallies[c].data();
+        std::size_t i = b;
+        for (; i + 4 <= e; i += 4) {
+            ++t[syms[i]];
+            ++t[symbolCount + syms[i + 1]];
+            ++t[2 * symbolCount + syms[i + 2]];
+            ++t[3 * symbolCount + syms[i + 3]];
+        }
+        for (; i < e; ++i) ++t[syms[i]];
+    });
+    std::vector<std::uint64_t> counts(symbolCount, 0);
+    for (const auto& t : tallies)
+        for (std::size_t k = 0; k < 4 * symbolCount; ++k) counts[k % symbolCount] += t[k];
+    return counts;
 }
 
 }  // namespace graftal
