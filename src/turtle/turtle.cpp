@@ -5,8 +5,24 @@
 
 namespace graftal {
 
+namespace {
+
+// At most one segment per F or G: the segments' room, reserved at once. Growing the vector
+// instead would copy every segment several times into fresh pages, which cost more than
+// the walk (a reservation beyond what is drawn is never touched, so it costs no memory).
+std::size_t segmentsAtMost(const LSystem& lsystem, const ModuleString& modules) {
+    const std::array<turtle::TurtleOp, kMaxSymbols> ops = turtle::opTable(lsystem);
+    std::size_t n = 0;
+    for (Symbol s : modules.symbols())
+        n += ops[s] == turtle::TurtleOp::Forward || ops[s] == turtle::TurtleOp::ForwardNoVertex;
+    return n;
+}
+
+}  // namespace
+
 Scene interpret(const LSystem& lsystem, const ModuleString& modules) {
     Scene scene;
+    scene.segments.reserve(segmentsAtMost(lsystem, modules));
     turtle::SceneSink sink(scene);
     turtle::TurtleMachine<turtle::SceneSink> machine(lsystem, sink);
     machine.run(modules);

@@ -50,6 +50,9 @@ enum class TurtleOp : std::uint8_t {
 };
 
 inline constexpr double kPi = 3.14159265358979323846;
+// Turns between two Gram-Schmidt passes over the frame. It changes the doubles of every
+// later step, so every walk that must agree with this one counts turns the same way.
+inline constexpr std::uint64_t kOrthonormaliseEvery = 4096;
 
 inline TurtleOp opFor(Symbol s) {
     switch (s) {
@@ -101,6 +104,18 @@ inline TurtleOp opFor(Symbol s) {
     }
 }
 
+// The operation of every symbol id: opFor() for characters, Surface for declared ~names.
+inline std::array<TurtleOp, kMaxSymbols> opTable(const LSystem& ls) {
+    std::array<TurtleOp, kMaxSymbols> ops{};
+    for (std::size_t s = 0; s < ops.size(); ++s)
+        ops[s] = s < ls.symbols.size() ? opFor(static_cast<Symbol>(s)) : TurtleOp::None;
+    for (std::size_t s = kFirstDeclaredSymbol; s < ls.symbols.size(); ++s) {
+        const std::string& name = ls.symbols.name(static_cast<Symbol>(s));
+        if (name.size() > 1 && name[0] == '~') ops[s] = TurtleOp::Surface;
+    }
+    return ops;
+}
+
 // Rotates v about the unit axis k by `radians` (Rodrigues).
 inline Vec3 rotateAbout(Vec3 v, Vec3 k, double radians) {
     double c = std::cos(radians), s = std::sin(radians);
@@ -133,14 +148,8 @@ using Visitor = std::function<void(std::size_t, const TurtleFrame&)>;
 template <class Sink>
 class TurtleMachine {
   public:
-    TurtleMachine(const LSystem& ls, Sink& sink) : ls_(ls), sink_(sink) {
+    TurtleMachine(const LSystem& ls, Sink& sink) : ls_(ls), sink_(sink), ops_(opTable(ls)) {
         const ViewSettings& v = ls.view;
-        for (std::size_t s = 0; s < ops_.size(); ++s)
-            ops_[s] = s < ls.symbols.size() ? opFor(static_cast<Symbol>(s)) : TurtleOp::None;
-        for (std::size_t s = kFirstDeclaredSymbol; s < ls.symbols.size(); ++s) {
-            const std::string& name = ls.symbols.name(static_cast<Symbol>(s));
-            if (name.size() > 1 && name[0] == '~') ops_[s] = TurtleOp::Surface;
-        }
         double delta = v.angleDegrees * kPi / 180.0;
         deltaCos_ = std::cos(delta);
         deltaSin_ = std::sin(delta);
@@ -195,7 +204,7 @@ class TurtleMachine {
             double r = args[0] * kPi / 180.0;
             rotatePair(a, b, std::cos(r), sign * std::sin(r));
         }
-        if (++rotations_ % 4096 == 0) orthonormalise();
+        if (++rotations_ % kOrthonormaliseEvery == 0) orthonormalise();
     }
 
     // Rounding drifts the frame after very many rotations; Gram-Schmidt puts it back.
@@ -226,7 +235,7 @@ class TurtleMachine {
         // A plant is 3D when its geometry leaves the z = 0 plane, not merely because it
         // rolled: a roll by 180 degrees keeps a plant flat (up to rounding, hence the
         // tolerance relative to the step).
-        if (std::fabs(state_.position.z) > 1e-9 * (1 + std::fabs(length))) mark3D();
+        if (!is3D_ && std::fabs(state_.position.z) > 1e-9 * (1 + std::fabs(length))) mark3D();
         if (!polygons_.empty()) {
             if (vertex) polygons_.back().push_back(state_.position);
         } else if (draw) {
@@ -367,7 +376,7 @@ class TurtleMachine {
 
     const LSystem& ls_;
     Sink& sink_;
-    std::array<TurtleOp, kMaxSymbols> ops_{};
+    std::array<TurtleOp, kMaxSymbols> ops_;
     double deltaCos_ = 1, deltaSin_ = 0, turnSign_ = 1;
     Vec3 tropism_{0, -1, 0};
     double elasticity_ = 0;
