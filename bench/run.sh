@@ -129,6 +129,16 @@ for r in "${rows[@]}"; do
     measure "$key.graftal" "$RUNS" "$BUDGET" 600 \
         "$graftal" stats "$ls_dir/$file" -n "$n" --no-geometry "${quiet[@]}"
 done
+# The derivation alone, timed inside one process (first run, then warm runs).
+if cmake --build "$build" --target graftal_derive_timing >"$results/derive_timing.log" 2>&1; then
+    for r in "${rows[@]}"; do
+        IFS='|' read -r key file n <<<"$r"
+        say "bench: graftal $file n=$n in process"
+        measure "$key.inproc" 1 0 600 "$build/graftal_derive_timing" "$ls_dir/$file" "$n" 5
+    done
+else
+    say "bench: cannot build graftal_derive_timing (see $results/derive_timing.log)"
+fi
 say "bench: graftal koch-island.l n=8 with the 2D turtle"
 measure interp8.graftal "$RUNS" "$BUDGET" 600 \
     "$graftal" stats "$ls_dir/koch-island.l" -n 8 "${quiet[@]}"
