@@ -1,9 +1,15 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <filesystem>
+#include <random>
+
+#include "rewrite/rewriting_engine.hpp"
 #include "test_helpers.hpp"
 
 using namespace graftal;
 using graftal::testing::derived;
+using graftal::testing::parse;
 
 TEST(Context, BookExampleLeftContextOfGIsD) {
     EXPECT_EQ(derived("Lsystem: 1\naxiom: ABCD[EF][G[HI[JKL]M]NOPQ]\nD < G --> X\nendlsystem\n", 1),
@@ -75,4 +81,148 @@ TEST(Context, ContextSearchCostDoesNotDependOnBranchSize) {
                                          "\nA < B --> C\nA < x --> y\nendlsystem\n");
     ModuleString s = derive(ls, 1);
     EXPECT_EQ(ls.symbols.name(s.symbol(s.size() - 1)), "C");
+}
+
+// ---- the context fast path (src/rewrite/context_rewriter.cpp) against the generic path ----
+
+namespace {
+
+constexpr std::size_t kNoLimit = std::size_t(1) << 40;
+
+// Rewrites `start` for `steps` steps with the generic path alone and, for 1, 2, 3 and 7
+// threads, with the engine as derivations use it, and expects the same string after every
+// step. Strings past 65536 modules are split into chunks, so that contexts cross chunk
+// boundaries. Returns the last string.
+ModuleString expectSameAsGenericPath(const LSystem& ls, const ModuleString& start, int steps,
+                                     const std::string& what, bool contextPath = true) {
+    RewritingEngine generic(ls, ls.productions, ls.seed, 1);
+    generic.useGenericPathOnly();
+    std::vector<ModuleString> expected{start};
+    ModuleString next;
+    for (int k = 1; k <= steps; ++k) {
+        generic.step(expected.back(), next, k, ls.tableForStep(k), kNoLimit);
+        expected.push_back(next);
+    }
+    for (unsigned threads : {1u, 2u, 3u, 7u}) {
+        RewritingEngine engine(ls, ls.productions, ls.seed, threads);
+        EXPECT_EQ(engine.usesContextPath(), contextPath) << what;
+        ModuleString s = start;
+        for (int k = 1; k <= steps; ++k) {
+            engine.step(s, next, k, ls.tableForStep(k), kNoLimit);
+            std::swap(s, next);
+            if (!(s == expected[static_cast<std::size_t>(k)])) {
+                ADD_FAILURE() << what << ": step " << k << " with " << threads << " threads ("
+                              << s.size() << " modules, expected "
+                              << expected[static_cast<std::size_t>(k)].size() << ")";
+                break;
+            }
+        }
+    }
+    return expected.back();
+}
+
+ModuleString symbolsOf(const std::string& text) {
+    ModuleString s;
+    for (char c : text) s.push(static_cast<Symbol>(c));
+    return s;
+}
+
+// A random string over `alphabet` of about n modules; brackets balanced unless `unbalanced`.
+std::string randomString(std::mt19937& rng, std::size_t n, const std::string& alphabet,
+                         bool unbalanced) {
+    std::string s;
+    int depth = 0;
+    while (s.size() < n) {
+        auto r = rng() % 100;
+        if (r < 12) {
+            s += '[';
+            ++depth;
+        } else if (r < 24 && (depth > 0 || unbalanced)) {
+            s += ']';
+            depth = std::max(0, depth - 1);
+        } else {
+            s += alphabet[rng() % alphabet.size()];
+        }
+    }
+    if (!unbalanced) s.append(static_cast<std::size_t>(depth), ']');
+    return s;
+}
+
+}  // namespace
+
+TEST(ContextFastPath, HogewegHesperSystemsAgreeWithTheGenericPath) {
+    // Steps at which the strings have grown past 100,000 modules.
+    const std::pair<const char*, int> systems[] = {
+        {"a", 43}, {"b", 36}, {"c", 41}, {"d", 36}, {"e", 41}};
+    for (const auto& [figure, steps] : systems) {
+        std::string file = std::string("fig3.11") + figure + "-hogeweg-hesper.l";
+        LSystem ls = loadLSystem(std::filesystem::path(GRAFTAL_EXAMPLES_DIR) / file);
+        ModuleString last = expectSameAsGenericPath(ls, ls.axiom, steps, file);
+        EXPECT_GT(last.size(), 100000u) << file << " must be large enough to be split";
+    }
+}
+
+TEST(ContextFastPath, RandomStringsAgreeAcrossChunkBoundaries) {
+    // Left and right contexts, ignored and considered symbols, contexts that are themselves
+    // ignored (they never match), modules with and without productions, deep and shallow
+    // branches: one step on strings of 200,000 modules, whose chunk boundaries fall anywhere.
+    const char* systems[] = {
+        "Lsystem: 1\naxiom: A\nignore: +-\nA < B > A --> [+B]C\nA < B --> -B\nB > C --> BB\n"
+        "C < A --> *\nB --> A\nendlsystem\n",
+        "Lsystem: 1\naxiom: A\nconsider: ABD\nA < C --> D\nD > B --> [A]\n"
+        "B < D > A --> C+C\nA > C --> B\nendlsystem\n",
+        "Lsystem: 1\naxiom: A\nignore: C+\nA < A > A --> B\nB < A > B --> [A]A\nC < A --> D\n"
+        "A > + --> C\n+ --> -\nendlsystem\n",
+        "Lsystem: 1\naxiom: A\nD < B --> A\nA > A --> B\nB < A --> [B]A\nC --> D\nendlsystem\n",
+    };
+    std::mt19937 rng(2024);
+    int k = 0;
+    for (const char* text : systems) {
+        LSystem ls = parse(text);
+        for (bool unbalanced : {false, true}) {
+            ModuleString start = symbolsOf(randomString(rng, 200000, "ABCD+-", unbalanced));
+            expectSameAsGenericPath(
+                ls, start, 3,
+                "system " + std::to_string(k) + (unbalanced ? " on an unbalanced string" : ""));
+        }
+        ++k;
+    }
+}
+
+TEST(ContextFastPath, BracketsAtTheEndsOfStringsAndChunks) {
+    LSystem ls = parse("Lsystem: 1\naxiom: A\nA < B --> C\nB > A --> D\nA --> B\nendlsystem\n");
+    for (const char* text : {"[", "]", "][", "B]A", "A[B", "[[[B]]]A", "]]]B[[[", "A]B[A"})
+        expectSameAsGenericPath(ls, symbolsOf(text), 4, text);
+    // Runs of brackets long enough to cover whole chunks, and branches that close in a
+    // later chunk than they open in.
+    std::string deep = std::string(70000, '[') + "AB" + std::string(70000, ']') + "BA";
+    std::string shallow;
+    for (int i = 0; i < 30000; ++i) shallow += "AB[A]B]";
+    for (const auto& text : {deep, shallow, std::string(100000, ']') + "AB" + "[" + "BA"})
+        expectSameAsGenericPath(ls, symbolsOf(text), 2, "long brackets");
+}
+
+TEST(ContextFastPath, StochasticProductionsWithContextsDrawAsTheGenericPath) {
+    LSystem ls = parse(
+        "Lsystem: 1\nseed: 11\nignore: F\naxiom: F[A]B[A]B[B]A\n"
+        "A < B > A --> F[A]B : 1\nA < B > A --> B[B]A : 2\nA < B --> A : 3\n"
+        "B --> BB : 0.25\nB --> [A]B : 0.75\nA > B --> A[B] : 1\nA > B --> BF : 4\n"
+        "A --> AFB\nendlsystem\n");
+    ModuleString last = expectSameAsGenericPath(ls, ls.axiom, 16, "stochastic");
+    EXPECT_GT(last.size(), 70000u);
+}
+
+TEST(ContextFastPath, TablesAgreeWithTheGenericPath) {
+    LSystem ls = parse(
+        "Lsystem: 1\naxiom: AB\nA < A --> B\ntable: grow\nA < B --> BA\nB --> A[B]\n"
+        "table: turn\nB > A --> AB\nA --> B\ntable schedule: grow 2, turn 1, repeat\n"
+        "endlsystem\n");
+    expectSameAsGenericPath(ls, ls.axiom, 12, "tables");
+}
+
+TEST(ContextFastPath, RightContextOnASkippedModuleTakesTheGenericPath) {
+    // '+' is ignored, so it cannot wait on its axis for a right context: the generic path.
+    LSystem ls = parse("Lsystem: 1\nignore: +\naxiom: A+B\n+ > B --> -\nA < B --> C\nendlsystem\n");
+    expectSameAsGenericPath(ls, ls.axiom, 2, "ignored predecessor", false);
+    EXPECT_EQ(derived(ls, 1), "A-C");
 }

@@ -1,5 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <iterator>
+
+#include "rewrite/rewriting_engine.hpp"
 #include "test_helpers.hpp"
 
 using namespace graftal;
@@ -119,5 +123,89 @@ TEST(Derivation, SameResultForAnyThreadCount) {
         ModuleString a = derive(ls, steps[k], one), b = derive(ls, steps[k], many);
         EXPECT_GT(a.size(), 70000u) << "system " << k << " must be large enough to be split";
         EXPECT_TRUE(a == b) << "system " << k;
+    }
+}
+
+// ---- parametric steps: the quick choice and direct binding against the generic path ----
+
+namespace {
+
+// Rewrites the axiom for `steps` steps with the generic path alone (choose() and matches()
+// for every module) and with the engine as derivations use it, at 1 and 3 threads, and
+// expects the same modules and the same doubles after every step.
+void expectParametricSameAsGenericPath(const LSystem& ls, int steps, const std::string& what) {
+    const std::size_t noLimit = std::size_t(1) << 40;
+    ModuleString start = ls.axiom;
+    if (!start.hasParameters()) start.rawParamStart().assign(start.size() + 1, 0);
+    RewritingEngine generic(ls, ls.productions, ls.seed, 1);
+    generic.useGenericPathOnly();
+    std::vector<ModuleString> expected{start};
+    ModuleString next;
+    for (int k = 1; k <= steps; ++k) {
+        generic.step(expected.back(), next, k, ls.tableForStep(k), noLimit);
+        expected.push_back(next);
+    }
+    for (unsigned threads : {1u, 3u}) {
+        RewritingEngine engine(ls, ls.productions, ls.seed, threads);
+        ModuleString s = start;
+        for (int k = 1; k <= steps; ++k) {
+            engine.step(s, next, k, ls.tableForStep(k), noLimit);
+            std::swap(s, next);
+            if (!(s == expected[static_cast<std::size_t>(k)])) {
+                ADD_FAILURE() << what << ": step " << k << " with " << threads << " threads";
+                break;
+            }
+        }
+    }
+}
+
+}  // namespace
+
+TEST(Derivation, ParametricStepsAgreeWithTheGenericPath) {
+    LSystem honda =
+        loadLSystem(std::filesystem::path(GRAFTAL_EXAMPLES_DIR) / "honda-monopodial-tree.l");
+    expectParametricSameAsGenericPath(honda, 15, "Honda");
+    const char* systems[] = {
+        // productions told apart by their number of parameters, and copies in between
+        "Lsystem: 1\naxiom: A(1)F(2)A(1,2)B[A(3)]\nA(x) --> A(x+1)F(x)[+A(x/2,x)]F(x)\n"
+        "A(x,y) --> B(x*y)A(y-x)\nB(x) --> B(x)\nB --> A(1)\nendlsystem\n",
+        // conditions, ran(), a context and a stochastic choice among parametric productions
+        "Lsystem: 1\nseed: 5\naxiom: A(1)B(3)A(5)C\nA(x) < B(y) > A(z) : y < 40 --> "
+        "B(x+z)[A(y)]\nA(x) : x > 3 --> A(x-ran(2))C\nA(x) --> A(x+1) : 0.4\n"
+        "A(x) --> B(x-1)A(x) : 0.6\nC --> CA(2)\nendlsystem\n",
+        // the first of several productions with the same predecessor wins
+        "Lsystem: 1\naxiom: A(1)BA(2)\nA(x) --> B(x)A(x+1)\nA(x) --> C(x*2)\nB --> BA(0)\n"
+        "B --> D\nendlsystem\n",
+        // pfg's multi-module predecessors next to parametric modules
+        "Lsystem: 1\naxiom: A(1)BC(2)\nA(x) --> A(x*2)B\nB C(y) --> C(y+1)B\nendlsystem\n",
+    };
+    int k = 0;
+    for (const char* text : systems)
+        expectParametricSameAsGenericPath(parse(text), 12, "system " + std::to_string(k++));
+}
+
+TEST(Derivation, SimpleArgumentsGiveTheSameDoublesAsTheirPrograms) {
+    LSystem ls = parse(
+        "Lsystem: 1\naxiom: A(0.7,-2)\nA(x,y) --> B(x+1.5, 2-x, x*0.1, x/3, 3/x, y, 7, "
+        "1.5+x, 2*x, x-0.1, 0.1-y)\nendlsystem\n");
+    ModuleString s = derive(ls, 1);
+    const double x = 0.7, y = -2;
+    const double expected[] = {x + 1.5, 2 - x,   x * 0.1, x / 3,   3 / x,  y,
+                               7,       1.5 + x, 2 * x,   x - 0.1, 0.1 - y};
+    auto got = s.params(0);
+    ASSERT_EQ(got.size(), std::size(expected));
+    for (std::size_t i = 0; i < got.size(); ++i) EXPECT_EQ(got[i], expected[i]) << "argument " << i;
+}
+
+TEST(Derivation, DivisionByAZeroConstantStillFailsWithItsLocation) {
+    LSystem ls = parse("Lsystem: 1\naxiom: A(1)\nA(x) --> B(x/0)\nendlsystem\n");
+    try {
+        derive(ls, 1);
+        FAIL() << "expected an error";
+    } catch (const Error& e) {
+        std::string m = e.diagnostics().front().toString();
+        EXPECT_NE(m.find("test.l:3:"), std::string::npos) << m;
+        EXPECT_NE(m.find("division by zero in 'x/0'"), std::string::npos) << m;
+        EXPECT_NE(m.find("'A(1)' in derivation step 1"), std::string::npos) << m;
     }
 }

@@ -62,7 +62,24 @@ class Expression {
     // Evaluates with `slots` holding the bound variables. Throws Error (with this
     // expression's location) on a division by zero or a domain error (a function or ^
     // giving nan or infinity).
-    double evaluate(std::span<const double> slots, const EvalContext* ctx = nullptr) const;
+    double evaluate(std::span<const double> slots, const EvalContext* ctx = nullptr) const {
+        // The shapes most successor arguments have, inline: a derivation step evaluates
+        // them for millions of modules. Each does the program's one operation on the same
+        // operands, so the result is the same double.
+        switch (shape_) {
+            case Shape::Constant:
+                return a_;
+            case Shape::Variable:
+                return slots[slot_];
+            case Shape::VariableConstant:
+                return apply(slots[slot_], a_);
+            case Shape::ConstantVariable:
+                return apply(a_, slots[slot_]);
+            case Shape::Program:
+                break;
+        }
+        return run(slots, ctx);
+    }
 
     bool isConstant() const { return code_.size() == 1 && code_[0].op == Op::Const; }
     bool empty() const { return code_.empty(); }
@@ -73,6 +90,34 @@ class Expression {
 
   private:
     friend class ExpressionCompiler;
+    // Program: anything else, run by the interpreter. Only +, -, * and / by a nonzero
+    // constant make the two-operand shapes: they cannot fail.
+    enum class Shape : std::uint8_t {
+        Program,
+        Constant,
+        Variable,
+        VariableConstant,
+        ConstantVariable
+    };
+    double apply(double x, double y) const {
+        switch (op_) {
+            case Op::Add:
+                return x + y;
+            case Op::Sub:
+                return x - y;
+            case Op::Mul:
+                return x * y;
+            default:
+                return x / y;
+        }
+    }
+    double run(std::span<const double> slots, const EvalContext* ctx) const;
+    void findShape();
+
+    Shape shape_ = Shape::Program;
+    Op op_ = Op::Add;
+    std::uint32_t slot_ = 0;
+    double a_ = 0;  // the constant of the shape
     std::vector<Instr> code_;
     std::vector<double> constants_;
     std::string text_;

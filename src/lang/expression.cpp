@@ -74,6 +74,7 @@ class ExpressionCompiler {
         }
         if (failed_) return Expression{};
         computeStackDepth();
+        expr_.findShape();
         return std::move(expr_);
     }
 
@@ -478,7 +479,35 @@ static double apply2(std::uint8_t fn, double a, double b) {
     return 0;
 }
 
-double Expression::evaluate(std::span<const double> slots, const EvalContext* ctx) const {
+void Expression::findShape() {
+    shape_ = Shape::Program;
+    auto isConst = [&](const Instr& in) { return in.op == Op::Const; };
+    auto isVar = [&](const Instr& in) { return in.op == Op::Var; };
+    if (code_.size() == 1 && isConst(code_[0])) {
+        shape_ = Shape::Constant;
+        a_ = constants_[code_[0].arg];
+    } else if (code_.size() == 1 && isVar(code_[0])) {
+        shape_ = Shape::Variable;
+        slot_ = code_[0].arg;
+    } else if (code_.size() == 3) {
+        Op op = code_[2].op;
+        bool simple = op == Op::Add || op == Op::Sub || op == Op::Mul;
+        if (isVar(code_[0]) && isConst(code_[1]) &&
+            (simple || (op == Op::Div && constants_[code_[1].arg] != 0))) {
+            shape_ = Shape::VariableConstant;
+            slot_ = code_[0].arg;
+            a_ = constants_[code_[1].arg];
+            op_ = op;
+        } else if (isConst(code_[0]) && isVar(code_[1]) && simple) {
+            shape_ = Shape::ConstantVariable;
+            a_ = constants_[code_[0].arg];
+            slot_ = code_[1].arg;
+            op_ = op;
+        }
+    }
+}
+
+double Expression::run(std::span<const double> slots, const EvalContext* ctx) const {
     std::array<double, 64> small;
     std::vector<double> big;
     double* st = small.data();

@@ -16,12 +16,22 @@ inline unsigned defaultThreadCount() {
     return n == 0 ? 1 : n;
 }
 
+// The number of chunks forEachChunk really makes of n items when asked for `chunks`.
+inline std::size_t chunkCountFor(std::size_t n, std::size_t chunks) {
+    return std::max<std::size_t>(1, std::min(chunks, n == 0 ? 1 : n));
+}
+
+// Where chunk c of `chunks` (as chunkCountFor gives them) begins; chunk `chunks` begins at n.
+inline std::size_t chunkBegin(std::size_t n, std::size_t chunks, std::size_t c) {
+    return n * c / chunks;
+}
+
 // Calls fn(chunk, begin, end) for `chunks` ranges covering [0, n). Exceptions are
 // rethrown from the lowest-numbered chunk that threw.
 template <class Fn>
 void forEachChunk(std::size_t n, std::size_t chunks, Fn&& fn) {
-    chunks = std::max<std::size_t>(1, std::min(chunks, n == 0 ? 1 : n));
-    auto begin = [&](std::size_t c) { return n * c / chunks; };
+    chunks = chunkCountFor(n, chunks);
+    auto begin = [&](std::size_t c) { return chunkBegin(n, chunks, c); };
     if (chunks == 1) {
         fn(std::size_t(0), std::size_t(0), n);
         return;

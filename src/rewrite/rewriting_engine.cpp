@@ -18,6 +18,10 @@ constexpr std::int32_t kConsumed = -2;  // part of a multi-module predecessor al
 // Below this many modules a step is not worth splitting across threads.
 constexpr std::size_t kParallelThreshold = 1 << 16;
 
+// How much larger than needed an output buffer is made when it has to grow (sizeOutput):
+// a string that grows by 27% a step (Hogeweg-Hesper) then reallocates every ninth step.
+constexpr std::size_t kHeadroom = 8;
+
 bool arityMatches(const ModulePattern& p, const ModuleString& s, std::size_t j) {
     return p.formals.size() == s.params(j).size();
 }
@@ -57,6 +61,55 @@ RewritingEngine::RewritingEngine(const LSystem& ls, const std::vector<Production
                 candidates_[t][p.predecessor[0].symbol].push_back(k);
     }
     if (fast_) buildFastTables();
+    buildQuickChoices();
+    if (!fast_ && !multiPred_ && !parametric_) {
+        context_ = std::make_unique<ContextRewriter>(ls, productions_, candidates_, seed_);
+        if (!context_->usable()) context_.reset();
+    }
+}
+
+RewritingEngine::~RewritingEngine() = default;
+
+// Per production: the parameters its successor writes, and whether its arguments can be
+// evaluated on the predecessor's own parameters. Per table and symbol: when every candidate
+// is a plain production (one module, no context, condition or probability), choose() would
+// take the first whose predecessor has the module's number of parameters.
+void RewritingEngine::buildQuickChoices() {
+    successorModules_.assign(productions_.size(), 0);
+    successorParams_.assign(productions_.size(), 0);
+    flat_.assign(productions_.size(), {});
+    for (std::size_t k = 0; k < productions_.size(); ++k) {
+        const Production& p = productions_[k];
+        Flat& f = flat_[k];
+        bool random = false;
+        for (const auto& m : p.successor) {
+            f.symbols.push_back(m.symbol);
+            f.argStart.push_back(static_cast<std::uint32_t>(f.args.size()));
+            for (const auto& a : m.args) {
+                f.args.push_back(&a);
+                random |= a.usesRandom();
+            }
+        }
+        f.direct = !p.hasContext() && p.predecessor.size() == 1 && !random;
+        successorModules_[k] = static_cast<std::uint32_t>(f.symbols.size());
+        successorParams_[k] = static_cast<std::uint32_t>(f.args.size());
+    }
+    quick_.assign(tableCount_, std::vector<QuickChoice>(ls_.symbols.size()));
+    for (std::size_t t = 0; t < tableCount_; ++t) {
+        for (std::size_t s = 0; s < ls_.symbols.size(); ++s) {
+            QuickChoice& q = quick_[t][s];
+            q.byArity.fill(kIdentity);
+            q.simple = true;
+            const auto& cands = candidates_[t][s];
+            for (std::size_t c = cands.size(); c-- > 0;) {
+                const Production& p = productions_[cands[c]];
+                q.simple &=
+                    p.predecessor.size() == 1 && !p.hasContext() && !p.condition && !p.probability;
+                std::size_t arity = p.predecessor[0].formals.size();
+                if (arity < kQuickArity) q.byArity[arity] = static_cast<std::int32_t>(cands[c]);
+            }
+        }
+    }
 }
 
 void RewritingEngine::buildFastTables() {
@@ -85,12 +138,19 @@ std::size_t RewritingEngine::chunkCount(std::size_t n) const {
     return threads_;
 }
 
+// The previous string counts with what it holds, not with its buffers' capacity, which
+// may include room kept for a later step (see sizeOutput).
+double RewritingEngine::stringBytes(std::size_t modules, std::size_t params, bool parametric) {
+    return static_cast<double>(modules) * sizeof(Symbol) +
+           (parametric ? static_cast<double>(modules + 1) * 4 + params * 8.0 : 0.0);
+}
+
 void RewritingEngine::checkLimit(int stepNumber, std::size_t modules, std::size_t params,
                                  std::size_t extra, const ModuleString& cur,
                                  std::size_t limit) const {
-    double bytes = static_cast<double>(modules) * sizeof(Symbol) +
-                   (parametric_ ? static_cast<double>(modules + 1) * 4 + params * 8.0 : 0.0);
-    double total = bytes + static_cast<double>(cur.memoryBytes()) + static_cast<double>(extra);
+    double bytes = stringBytes(modules, params, parametric_);
+    double total = bytes + stringBytes(cur.size(), cur.paramCount(), cur.hasParameters()) +
+                   static_cast<double>(extra);
     if (total > static_cast<double>(limit) || params > 0xFFFFFFFFull ||
         (needBrackets_ && modules > 0xFFFFFFFEull)) {
         throw Error(SourceLocation{ls_.file, 0, 0},
@@ -107,9 +167,47 @@ bool RewritingEngine::step(const ModuleString& cur, ModuleString& next, int step
                            std::size_t memoryLimit, const std::vector<std::uint8_t>* activeIn,
                            std::vector<std::uint8_t>* activeOut) {
     table = std::clamp(table, 0, static_cast<int>(tableCount_) - 1);
-    if (fast_ && !activeIn && !activeOut)
-        return stepFast(cur, next, stepNumber, table, memoryLimit);
+    if (!genericOnly_ && !activeIn && !activeOut && !cur.hasParameters()) {
+        if (fast_) return stepFast(cur, next, stepNumber, table, memoryLimit);
+        if (context_) return stepContext(cur, next, stepNumber, table, memoryLimit);
+    }
     return stepGeneric(cur, next, stepNumber, table, memoryLimit, activeIn, activeOut);
+}
+
+namespace {
+
+// Sizes a step's output buffer to n elements, leaving its contents uninitialised. When it
+// must grow, it grows to `most` elements: the buffer comes back two steps later for a
+// longer string, and pages it already has cost nothing, while fresh pages are zeroed by the
+// kernel first (the larger part of a step's time on big strings). Pages of the room it
+// keeps are not touched until a string needs them.
+template <class Vector>
+void sizeOutput(Vector& v, std::size_t n, std::size_t most) {
+    if (v.capacity() < n) {
+        v.clear();
+        v.reserve(std::max(n, most));
+    }
+    v.resize(n);
+}
+
+}  // namespace
+
+void RewritingEngine::prepareOutput(const ModuleString& cur, ModuleString& next,
+                                    std::size_t modules, std::size_t params, bool parametric,
+                                    std::size_t extra, std::size_t limit) const {
+    // Up to kHeadroom times the room needed, within the memory limit as if every buffer
+    // were full.
+    double bytes = stringBytes(modules, params, parametric);
+    double spare = static_cast<double>(limit) -
+                   stringBytes(cur.size(), cur.paramCount(), cur.hasParameters()) -
+                   static_cast<double>(extra);
+    double room = bytes > 0 ? std::clamp(spare / bytes, 1.0, static_cast<double>(kHeadroom)) : 1;
+    auto most = [room](std::size_t n) { return static_cast<std::size_t>(room * n); };
+    next.clear();
+    sizeOutput(next.rawSymbols(), modules, most(modules));
+    if (!parametric) return;
+    sizeOutput(next.rawParamStart(), modules + 1, most(modules + 1));
+    sizeOutput(next.rawParams(), params, most(params));
 }
 
 // ---- fast path: deterministic, context-free, no parameters ------------------------------
@@ -128,9 +226,8 @@ bool RewritingEngine::stepFast(const ModuleString& cur, ModuleString& next, int 
     });
     std::size_t total = std::accumulate(sizes.begin(), sizes.end(), std::size_t(0));
     checkLimit(stepNumber, total, 0, 0, cur, limit);
-    next.clear();
+    prepareOutput(cur, next, total, 0, false, 0, limit);
     auto& out = next.rawSymbols();
-    out.resize(total);
     std::vector<std::size_t> offsets(chunks, 0);
     std::exclusive_scan(sizes.begin(), sizes.end(), offsets.begin(), std::size_t(0));
     const Symbol* successors = fastSymbols_[table].data();
@@ -147,6 +244,14 @@ bool RewritingEngine::stepFast(const ModuleString& cur, ModuleString& next, int 
         }
     });
     return true;
+}
+
+bool RewritingEngine::stepContext(const ModuleString& cur, ModuleString& next, int stepNumber,
+                                  int table, std::size_t limit) {
+    std::size_t total = context_->choose(cur, stepNumber, table, chunkCount(cur.size()));
+    checkLimit(stepNumber, total, 0, context_->scratchBytes(), cur, limit);
+    prepareOutput(cur, next, total, 0, false, context_->scratchBytes(), limit);
+    return context_->write(cur, next.rawSymbols().data());
 }
 
 // ---- matching ---------------------------------------------------------------------------
@@ -373,103 +478,167 @@ bool RewritingEngine::stepGeneric(const ModuleString& cur, ModuleString& next, i
                                   std::vector<std::uint8_t>* activeOut) {
     std::size_t n = cur.size();
     if (needBrackets_) brackets_.build(cur.symbols());
+    // Every element is written below: no copy of the old ones, and room for later steps.
+    if (choice_.capacity() < n) {
+        choice_.clear();
+        choice_.reserve(2 * n);
+    }
     choice_.resize(n);
     std::size_t chunks = chunkCount(n);
     std::vector<std::size_t> modCount(chunks, 0), paramCount(chunks, 0), rewritten(chunks, 0);
     const bool parametricOut = parametric_ || cur.hasParameters();
+    const Symbol* syms = cur.symbols().data();
+    // Module i's parameters are params[start[i] .. start[i + 1]) (none without start).
+    const std::uint32_t* start = cur.hasParameters() ? cur.paramStarts().data() : nullptr;
+    const double* params = start && n ? cur.params(0).data() - start[0] : nullptr;
+    const QuickChoice* quick = quick_[static_cast<std::size_t>(table)].data();
 
-    forEachChunk(n, chunks, [&](std::size_t c, std::size_t b, std::size_t e) {
-        std::vector<double> slots(static_cast<std::size_t>(maxSlots_));
-        std::vector<double> weights;
-        std::size_t mods = 0, params = 0, applied = 0;
-        for (std::size_t i = b; i < e; ++i) {
-            std::int32_t k = kIdentity;
-            if (!activeIn || (*activeIn)[i]) {
-                try {
-                    k = choose(cur, i, i, stepNumber, table, slots.data(), weights);
-                } catch (const Error& err) {
-                    rethrowAt(err, cur, i, stepNumber);
+    std::int32_t* choice = choice_.data();
+    forEachChunk(
+        n, chunks, [&, syms, start, quick, choice](std::size_t c, std::size_t b, std::size_t e) {
+            // Locals, not captures: the stores below could alias the closure for the compiler.
+            const Symbol* in = syms;
+            const std::uint32_t* from = start;
+            const QuickChoice* fast = quick;
+            std::int32_t* chosen = choice;
+            const std::uint32_t* successorModules = successorModules_.data();
+            const std::uint32_t* successorParams = successorParams_.data();
+            const std::uint8_t* active = activeIn ? activeIn->data() : nullptr;
+            const bool genericOnly = genericOnly_;
+            std::vector<double> slots(static_cast<std::size_t>(maxSlots_));
+            std::vector<double> weights;
+            std::size_t mods = 0, paramsOut = 0, applied = 0;
+            for (std::size_t i = b; i < e; ++i) {
+                std::int32_t k = kIdentity;
+                std::uint32_t arity = from ? from[i + 1] - from[i] : 0;
+                if (!active || active[i]) {
+                    const QuickChoice& q = fast[in[i]];
+                    if (q.simple && arity < kQuickArity && !genericOnly) {
+                        k = q.byArity[arity];
+                    } else {
+                        try {
+                            k = choose(cur, i, i, stepNumber, table, slots.data(), weights);
+                        } catch (const Error& err) {
+                            rethrowAt(err, cur, i, stepNumber);
+                        }
+                    }
+                }
+                chosen[i] = k;
+                if (k == kIdentity) {
+                    ++mods;
+                    paramsOut += arity;
+                    continue;
+                }
+                ++applied;
+                mods += successorModules[k];
+                paramsOut += successorParams[k];
+                std::size_t extra =
+                    productions_[static_cast<std::size_t>(k)].predecessor.size() - 1;
+                if (extra > 0) [[unlikely]] {
+                    for (std::size_t q = 1; q <= extra; ++q) chosen[i + q] = kConsumed;
+                    i += extra;
                 }
             }
-            choice_[i] = k;
-            if (k == kIdentity) {
-                ++mods;
-                params += cur.params(i).size();
-                continue;
-            }
-            ++applied;
-            const Production& p = productions_[static_cast<std::size_t>(k)];
-            for (std::size_t q = 1; q < p.predecessor.size(); ++q) choice_[i + q] = kConsumed;
-            i += p.predecessor.size() - 1;
-            mods += p.successor.size();
-            for (const auto& m : p.successor) params += m.args.size();
-        }
-        modCount[c] = mods;
-        paramCount[c] = params;
-        rewritten[c] = applied;
-    });
+            modCount[c] = mods;
+            paramCount[c] = paramsOut;
+            rewritten[c] = applied;
+        });
 
     std::size_t totalMods = std::accumulate(modCount.begin(), modCount.end(), std::size_t(0));
     std::size_t totalParams = std::accumulate(paramCount.begin(), paramCount.end(), std::size_t(0));
-    checkLimit(stepNumber, totalMods, totalParams, choice_.capacity() * sizeof(std::int32_t), cur,
-               limit);
+    checkLimit(stepNumber, totalMods, totalParams, n * sizeof(std::int32_t), cur, limit);
 
     std::vector<std::size_t> modOff(chunks), paramOff(chunks);
     std::exclusive_scan(modCount.begin(), modCount.end(), modOff.begin(), std::size_t(0));
     std::exclusive_scan(paramCount.begin(), paramCount.end(), paramOff.begin(), std::size_t(0));
 
-    next.clear();
-    auto& outSyms = next.rawSymbols();
-    auto& outStart = next.rawParamStart();
-    auto& outParams = next.rawParams();
-    outSyms.resize(totalMods);
-    if (parametricOut) {
-        outStart.resize(totalMods + 1);
-        outParams.resize(totalParams);
-        outStart[totalMods] = static_cast<std::uint32_t>(totalParams);
-    }
+    prepareOutput(cur, next, totalMods, totalParams, parametricOut, n * sizeof(std::int32_t),
+                  limit);
+    Symbol* outSyms = next.rawSymbols().data();
+    std::uint32_t* outStart = parametricOut ? next.rawParamStart().data() : nullptr;
+    double* outParams = parametricOut ? next.rawParams().data() : nullptr;
+    if (parametricOut) outStart[totalMods] = static_cast<std::uint32_t>(totalParams);
     if (activeOut) activeOut->assign(totalMods, 0);
 
-    forEachChunk(n, chunks, [&](std::size_t c, std::size_t b, std::size_t e) {
-        std::vector<double> slots(static_cast<std::size_t>(maxSlots_));
-        std::size_t o = modOff[c], po = paramOff[c];
-        for (std::size_t i = b; i < e; ++i) {
-            std::int32_t k = choice_[i];
-            if (k == kConsumed) continue;
-            if (k == kIdentity) {
-                outSyms[o] = cur.symbol(i);
-                if (parametricOut) {
-                    outStart[o] = static_cast<std::uint32_t>(po);
-                    for (double v : cur.params(i)) outParams[po++] = v;
-                }
-                ++o;
-                continue;
-            }
-            const Production& p = productions_[static_cast<std::size_t>(k)];
-            if (activeOut)
-                std::fill(activeOut->begin() + static_cast<std::ptrdiff_t>(o),
-                          activeOut->begin() + static_cast<std::ptrdiff_t>(o + p.successor.size()),
-                          1);
-            if (!parametricOut) {
-                for (const auto& m : p.successor) outSyms[o++] = m.symbol;
-                continue;
-            }
-            matches(p, cur, i, slots.data());
-            Draws draws{this, static_cast<std::uint64_t>(stepNumber), i, 1ull << 32};
-            for (const auto& m : p.successor) {
-                outSyms[o] = m.symbol;
-                outStart[o] = static_cast<std::uint32_t>(po);
-                for (const auto& a : m.args) {
-                    try {
-                        outParams[po++] = evaluate(a, slots.data(), draws);
-                    } catch (const Error& err) {
-                        rethrowAt(err, cur, i, stepNumber);
+    forEachChunk(
+        n, chunks,
+        [&, syms, start, params, outSyms, outStart, outParams, choice](std::size_t c, std::size_t b,
+                                                                       std::size_t e) {
+            // Locals, not captures: the stores below could alias the closure for the compiler.
+            const Symbol* in = syms;
+            const std::uint32_t* from = start;
+            const double* values = params;
+            const std::int32_t* chosen = choice;
+            Symbol* symOut = outSyms;
+            std::uint32_t* startOut = outStart;
+            double* paramOut = outParams;
+            std::vector<double> slots(static_cast<std::size_t>(maxSlots_));
+            std::size_t o = modOff[c], po = paramOff[c];
+            for (std::size_t i = b; i < e; ++i) {
+                std::int32_t k = chosen[i];
+                if (k == kConsumed) continue;
+                if (k == kIdentity) {
+                    // A run of copies is copied at once: its parameters are contiguous in both
+                    // strings, only shifted.
+                    std::size_t j = i + 1;
+                    while (j < e && chosen[j] == kIdentity) ++j;
+                    std::memcpy(symOut + o, in + i, (j - i) * sizeof(Symbol));
+                    if (parametricOut && from) {
+                        auto shift = static_cast<std::uint32_t>(po) - from[i];
+                        for (std::size_t t = 0; t < j - i; ++t)
+                            startOut[o + t] = from[i + t] + shift;
+                        std::size_t count = from[j] - from[i];
+                        if (count > 0)
+                            std::memcpy(paramOut + po, values + from[i], count * sizeof(double));
+                        po += count;
+                    } else if (parametricOut) {
+                        std::fill(startOut + o, startOut + o + (j - i),
+                                  static_cast<std::uint32_t>(po));
                     }
+                    o += j - i;
+                    i = j - 1;
+                    continue;
                 }
-                ++o;
+                const Production& p = productions_[static_cast<std::size_t>(k)];
+                if (activeOut)
+                    std::fill(
+                        activeOut->begin() + static_cast<std::ptrdiff_t>(o),
+                        activeOut->begin() + static_cast<std::ptrdiff_t>(o + p.successor.size()),
+                        1);
+                if (!parametricOut) {
+                    for (const auto& m : p.successor) symOut[o++] = m.symbol;
+                    continue;
+                }
+                try {
+                    if (const Flat& f = flat_[static_cast<std::size_t>(k)];
+                        f.direct && !genericOnly_) {
+                        // Without contexts the predecessor's parameters are the slots, in order.
+                        std::span<const double> vars;
+                        if (from) vars = {values + from[i], from[i + 1] - from[i]};
+                        const std::size_t modules = f.symbols.size(), args = f.args.size();
+                        for (std::size_t m = 0; m < modules; ++m) {
+                            symOut[o + m] = f.symbols[m];
+                            startOut[o + m] = static_cast<std::uint32_t>(po + f.argStart[m]);
+                        }
+                        for (std::size_t a = 0; a < args; ++a)
+                            paramOut[po + a] = f.args[a]->evaluate(vars);
+                        o += modules;
+                        po += args;
+                        continue;
+                    }
+                    matches(p, cur, i, slots.data());
+                    Draws draws{this, static_cast<std::uint64_t>(stepNumber), i, 1ull << 32};
+                    for (const auto& m : p.successor) {
+                        symOut[o] = m.symbol;
+                        startOut[o++] = static_cast<std::uint32_t>(po);
+                        for (const auto& a : m.args)
+                            paramOut[po++] = evaluate(a, slots.data(), draws);
+                    }
+                } catch (const Error& err) {
+                    rethrowAt(err, cur, i, stepNumber);
+                }
             }
-        }
-    });
+        });
     return std::accumulate(rewritten.begin(), rewritten.end(), std::size_t(0)) > 0;
 }
 

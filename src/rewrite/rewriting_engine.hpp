@@ -3,10 +3,13 @@
 // (with tables) and for the recursive decomposition and homomorphism passes.
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "bracket_index.hpp"
+#include "context_rewriter.hpp"
 #include "graftal/lsystem.hpp"
 #include "graftal/module_string.hpp"
 
@@ -16,6 +19,7 @@ class RewritingEngine {
   public:
     RewritingEngine(const LSystem& ls, const std::vector<Production>& productions,
                     std::uint64_t seed, unsigned threads);
+    ~RewritingEngine();
 
     // Rewrites `cur` into `next` with the productions of `table`. When `activeIn` is given,
     // only modules flagged there are rewritten; `activeOut` (when given) flags the modules
@@ -37,10 +41,18 @@ class RewritingEngine {
     void expandOne(const ModuleString& s, std::size_t i, std::uint64_t position, int stepNumber,
                    int table, ModuleString& out);
 
+    // For tests: every step takes the generic path, choosing with choose() and binding with
+    // matches(), which the fast paths must agree with.
+    void useGenericPathOnly() { genericOnly_ = true; }
+    // True when context-sensitive steps take the ContextRewriter.
+    bool usesContextPath() const { return context_ != nullptr; }
+
   private:
     struct Draws;
     bool stepFast(const ModuleString& cur, ModuleString& next, int stepNumber, int table,
                   std::size_t limit);
+    bool stepContext(const ModuleString& cur, ModuleString& next, int stepNumber, int table,
+                     std::size_t limit);
     bool stepGeneric(const ModuleString& cur, ModuleString& next, int stepNumber, int table,
                      std::size_t limit, const std::vector<std::uint8_t>* activeIn,
                      std::vector<std::uint8_t>* activeOut);
@@ -55,10 +67,15 @@ class RewritingEngine {
     double evaluate(const Expression& e, const double* slots, Draws& draws) const;
     [[noreturn]] void rethrowAt(const class Error& err, const ModuleString& s, std::size_t i,
                                 int stepNumber) const;
+    static double stringBytes(std::size_t modules, std::size_t params, bool parametric);
+    void prepareOutput(const ModuleString& cur, ModuleString& next, std::size_t modules,
+                       std::size_t params, bool parametric, std::size_t extra,
+                       std::size_t limit) const;
     void checkLimit(int stepNumber, std::size_t modules, std::size_t params, std::size_t extra,
                     const ModuleString& cur, std::size_t limit) const;
     std::size_t chunkCount(std::size_t n) const;
     void buildFastTables();
+    void buildQuickChoices();
 
     const LSystem& ls_;
     const std::vector<Production>& productions_;
@@ -68,6 +85,7 @@ class RewritingEngine {
     bool multiPred_ = false;
     bool parametric_ = false;
     bool needBrackets_ = false;
+    bool genericOnly_ = false;
     int maxSlots_ = 1;
     std::size_t tableCount_ = 1;
 
@@ -76,6 +94,28 @@ class RewritingEngine {
     // Fast path, per table: the successor of each symbol, flattened (identity included).
     std::vector<std::vector<std::uint32_t>> fastStart_;
     std::vector<std::vector<Symbol>> fastSymbols_;
+
+    // Parametric steps: see buildQuickChoices.
+    static constexpr std::size_t kQuickArity = 8;
+    struct QuickChoice {
+        bool simple = false;
+        std::array<std::int32_t, kQuickArity> byArity{};
+    };
+    std::vector<std::vector<QuickChoice>> quick_;                    // per table, per symbol
+    std::vector<std::uint32_t> successorModules_, successorParams_;  // per production
+    // A production's successor laid out flat: its symbols, where each module's arguments
+    // begin, and the arguments; `direct` when they can be evaluated on the predecessor's
+    // own parameters (no context, one module, no ran()).
+    struct Flat {
+        std::vector<Symbol> symbols;
+        std::vector<std::uint32_t> argStart;
+        std::vector<const Expression*> args;
+        bool direct = false;
+    };
+    std::vector<Flat> flat_;  // per production
+
+    // Context-sensitive steps without parameters, when the contexts are single modules.
+    std::unique_ptr<ContextRewriter> context_;
 
     BracketIndex brackets_;
     std::vector<double> scratchSlots_, scratchWeights_;
