@@ -49,15 +49,18 @@ struct UninitializedAllocator {
     }
 };
 
-// A module name is a small integer. Single printable ASCII characters are their own code
-// (so 'F' is 70 everywhere); declared multi-letter names get ids from 128 up.
-using Symbol = std::uint16_t;
+// A module name is a small integer, one byte per module in a string (as a cpfg module is a
+// character): strings of 10^9 modules then take 1 GB, and every derivation step moves
+// half the bytes it would with wider ids. Single printable ASCII characters are their own
+// code (so 'F' is 70 everywhere); declared multi-letter names get ids from 128 up, which
+// leaves room for 123 of them beside the predeclared query modules.
+using Symbol = std::uint8_t;
 
 inline constexpr Symbol kFirstNamedSymbol = 128;
 // Ids of the predeclared query modules ?E ?P ?H ?L ?U (in this order).
 inline constexpr Symbol kQueryE = 128, kQueryP = 129, kQueryH = 130, kQueryL = 131, kQueryU = 132;
 inline constexpr Symbol kFirstDeclaredSymbol = 133;  // the first name a file declares
-inline constexpr std::size_t kMaxSymbols = 65536;
+inline constexpr std::size_t kMaxSymbols = 256;
 
 class SymbolTable {
   public:

@@ -92,6 +92,12 @@ bool tokenizeModules(std::string_view text, const SourceLocation& loc, int start
             while (e < text.size() &&
                    (std::isalnum(static_cast<unsigned char>(text[e])) || text[e] == '_'))
                 ++e;
+            if (symbols.size() >= kMaxSymbols && symbols.find(text.substr(i, e - i)) < 0) {
+                diags.error(where(i), "too many module names: at most " +
+                                          std::to_string(kMaxSymbols - kFirstDeclaredSymbol) +
+                                          " multi-letter names (and ~surfaces) per file");
+                return false;
+            }
             tok.symbol = symbols.declare(text.substr(i, e - i));
             out.push_back(std::move(tok));
             i = e;

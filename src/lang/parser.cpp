@@ -225,8 +225,10 @@ void Parser::parseModuleDeclaration(const SourceLine& line, std::size_t start) {
         }
         while (i < end && (std::isalnum(static_cast<unsigned char>(t[i])) || t[i] == '_')) ++i;
         std::string_view name = t.substr(s, i - s);
-        if (ls_.symbols.size() >= kMaxSymbols) {
-            diags_.error(at(line, s), "too many module names (at most 65408)");
+        if (ls_.symbols.size() >= kMaxSymbols && ls_.symbols.find(name) < 0) {
+            diags_.error(at(line, s), "too many module names: at most " +
+                                          std::to_string(kMaxSymbols - kFirstDeclaredSymbol) +
+                                          " multi-letter names (and ~surfaces) per file");
             return;
         }
         ls_.symbols.declare(name);

@@ -12,9 +12,10 @@ namespace graftal {
 
 namespace {
 
-bool containsSymbol(const ModuleString& s, Symbol a, Symbol b = 0xFFFF) {
+// Whether `s` has a module with a symbol in [a, b].
+bool containsSymbol(const ModuleString& s, Symbol a, Symbol b) {
     for (Symbol x : s.symbols())
-        if (x == a || (b != 0xFFFF && x >= a && x <= b)) return true;
+        if (x >= a && x <= b) return true;
     return false;
 }
 
@@ -76,7 +77,7 @@ Derivation::~Derivation() = default;
 // '%' removes itself and the rest of its branch: everything up to the ']' that closes the
 // branch it stands in (or the end of the string on the main axis).
 static bool pruneCuts(const ModuleString& s, ModuleString& out) {
-    if (!containsSymbol(s, '%')) return false;
+    if (!containsSymbol(s, '%', '%')) return false;
     out.clear();
     out.reserve(s.size(), s.paramCount());
     if (s.hasParameters()) out.rawParamStart().assign(1, 0);

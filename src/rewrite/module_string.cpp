@@ -1,5 +1,7 @@
 #include "graftal/module_string.hpp"
 
+#include "graftal/diagnostics.hpp"
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -58,6 +60,10 @@ Symbol SymbolTable::declare(std::string_view name) {
         return static_cast<Symbol>(name[0]);
     auto it = ids_.find(std::string(name));
     if (it != ids_.end()) return it->second;
+    if (names_.size() >= kMaxSymbols)
+        throw Error(SourceLocation{}, "too many module names: at most " +
+                                          std::to_string(kMaxSymbols - kFirstDeclaredSymbol) +
+                                          " multi-letter names per L-system");
     auto id = static_cast<Symbol>(names_.size());
     names_.emplace_back(name);
     ids_.emplace(std::string(name), id);
