@@ -183,3 +183,17 @@ TEST(ParserErrors, UnterminatedComment) {
     EXPECT_EQ(parseError("Lsystem: 1\naxiom: F /* no end\n"),
               "test.l:2:10: error: unterminated comment: expected '*/' before the end of the file");
 }
+
+TEST(ParserErrors, TooManyModuleNamesIsAnErrorWithItsPlace) {
+    // Symbols are one byte: 123 multi-letter names fit beside ASCII and ?E ?P ?H ?L ?U.
+    std::string names;
+    for (int i = 0; i < 123; ++i) names += (i ? ", m" : "module m") + std::to_string(i);
+    std::string ok = names + ";\nLsystem: 1\naxiom: m122 F\nendlsystem\n";
+    EXPECT_EQ(graftal::testing::parse(ok).symbols.size(), 256u);
+    std::string e = parseError(names + ", extra;\nLsystem: 1\naxiom: F\nendlsystem\n");
+    EXPECT_NE(e.find("test.l:1:"), std::string::npos) << e;
+    EXPECT_NE(e.find("too many module names: at most 123"), std::string::npos) << e;
+    e = parseError(names + ";\nLsystem: 1\naxiom: ~leaf\nendlsystem\n");
+    EXPECT_NE(e.find("test.l:3:8"), std::string::npos) << e;
+    EXPECT_NE(e.find("too many module names"), std::string::npos) << e;
+}
