@@ -131,6 +131,21 @@ void RewritingEngine::buildFastTables() {
         }
         start[n] = static_cast<std::uint32_t>(syms.size());
     }
+    fastShort_.assign(tableCount_, {});
+    fastLength_.assign(tableCount_, {});
+    for (std::size_t t = 0; t < tableCount_; ++t) {
+        const auto& start = fastStart_[t];
+        bool allShort = true;
+        for (std::size_t s = 0; s < n; ++s) allShort &= start[s + 1] - start[s] <= kShortSuccessor;
+        if (!allShort) continue;
+        fastShort_[t].assign(n, ShortSuccessor{});
+        fastLength_[t].assign(n, 0);
+        for (std::size_t s = 0; s < n; ++s) {
+            fastLength_[t][s] = static_cast<std::uint8_t>(start[s + 1] - start[s]);
+            std::copy(fastSymbols_[t].begin() + start[s], fastSymbols_[t].begin() + start[s + 1],
+                      fastShort_[t][s].symbols);
+        }
+    }
 }
 
 std::size_t RewritingEngine::chunkCount(std::size_t n) const {
@@ -219,9 +234,14 @@ bool RewritingEngine::stepFast(const ModuleString& cur, ModuleString& next, int 
     std::size_t chunks = chunkCount(n);
     std::vector<std::size_t> sizes(chunks, 0);
     const std::uint32_t* start = fastStart_[table].data();
+    const bool isShort = !fastShort_[table].empty();
+    const std::uint8_t* length = isShort ? fastLength_[table].data() : nullptr;
     forEachChunk(n, chunks, [&](std::size_t c, std::size_t b, std::size_t e) {
         std::size_t total = 0;
-        for (std::size_t i = b; i < e; ++i) total += start[in[i] + 1] - start[in[i]];
+        if (isShort)
+            for (std::size_t i = b; i < e; ++i) total += length[in[i]];
+        else
+            for (std::size_t i = b; i < e; ++i) total += start[in[i] + 1] - start[in[i]];
         sizes[c] = total;
     });
     std::size_t total = std::accumulate(sizes.begin(), sizes.end(), std::size_t(0));
@@ -231,9 +251,21 @@ bool RewritingEngine::stepFast(const ModuleString& cur, ModuleString& next, int 
     std::vector<std::size_t> offsets(chunks, 0);
     std::exclusive_scan(sizes.begin(), sizes.end(), offsets.begin(), std::size_t(0));
     const Symbol* successors = fastSymbols_[table].data();
+    const ShortSuccessor* slots = isShort ? fastShort_[table].data() : nullptr;
     forEachChunk(n, chunks, [&](std::size_t c, std::size_t b, std::size_t e) {
         Symbol* o = out.data() + offsets[c];
-        for (std::size_t i = b; i < e; ++i) {
+        std::size_t i = b;
+        if (isShort) {
+            // A whole slot is stored and the pointer advances by the successor's length:
+            // the bytes past it are overwritten by the next successors. Near the chunk's
+            // end, where they would land in the next chunk's output, copy exactly.
+            Symbol* safeEnd = out.data() + offsets[c] + sizes[c];
+            for (; i < e && o + kShortSuccessor <= safeEnd; ++i) {
+                std::memcpy(o, slots[in[i]].symbols, sizeof(ShortSuccessor));
+                o += length[in[i]];
+            }
+        }
+        for (; i < e; ++i) {
             std::uint32_t s0 = start[in[i]], len = start[in[i] + 1] - s0;
             if (len == 1) {
                 *o++ = successors[s0];

@@ -94,6 +94,14 @@ class RewritingEngine {
     // Fast path, per table: the successor of each symbol, flattened (identity included).
     std::vector<std::vector<std::uint32_t>> fastStart_;
     std::vector<std::vector<Symbol>> fastSymbols_;
+    // When every successor of a table has at most kShortSuccessor symbols: each one padded
+    // to a fixed slot (written with one vector store) and its length.
+    static constexpr std::size_t kShortSuccessor = 16;
+    struct ShortSuccessor {
+        Symbol symbols[kShortSuccessor];
+    };
+    std::vector<std::vector<ShortSuccessor>> fastShort_;
+    std::vector<std::vector<std::uint8_t>> fastLength_;
 
     // Parametric steps: see buildQuickChoices.
     static constexpr std::size_t kQuickArity = 8;
