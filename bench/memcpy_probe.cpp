@@ -3,7 +3,7 @@
 //
 //   memcpy_probe [BYTES] [REPEATS]
 //
-// BYTES defaults to the quadratic Koch island at n = 8: 124,630,747 modules at 2 bytes per
+// BYTES defaults to the quadratic Koch island at n = 8: 124,630,747 modules at 1 byte per
 // module. The probe copies a warm (already faulted-in) source buffer of that size into a
 // warm destination REPEATS times (default 7) with one thread, takes the fastest copy, and
 // prints one line of JSON:
@@ -39,7 +39,7 @@ volatile unsigned char sink;
 }  // namespace
 
 int main(int argc, char** argv) {
-    std::size_t bytes = 124630747ull * 2;
+    std::size_t bytes = 124630747ull;
     int repeats = 7;
     if (argc > 1) bytes = std::strtoull(argv[1], nullptr, 10);
     if (argc > 2) repeats = std::max(1, std::atoi(argv[2]));

@@ -55,7 +55,7 @@ EXPECTED = {
     "stream11": koch_modules(11),
 }
 
-# Parameters per module of Honda's tree, to size its output (6 bytes per module plus 8
+# Parameters per module of Honda's tree, to size its output (5 bytes per module plus 8
 # per parameter in graftal's structure of arrays).
 HONDA_ARITY = {"!": 1, "F": 1, "&": 1, "/": 1, "+": 1, "-": 1, "A": 2, "B": 2, "C": 2}
 
@@ -66,7 +66,7 @@ ROWS = [
     ("hogeweg70", "3. Hogeweg–Hesper 1.31a n=70 (context)", "≤ 0.5 s", "17.4 s"),
     ("honda23", "4. Honda 2.6a n=23 (parametric)", "≤ 0.4 s", "4.0 s / 472 MB"),
     ("interp8", "5. Koch n=8 + 2D turtle", "≥ 300 M modules/s", "—"),
-    ("memcpy", "6. memcpy probe (Koch n=8 output, 2 B/module)", "— (the floor)", "—"),
+    ("memcpy", "6. memcpy probe (Koch n=8 output, 1 B/module)", "— (the floor)", "—"),
     ("stream11", "7. Koch n=11 streamed to PNG", "≤ 120 s, ≤ 100 MB", "—"),
 ]
 
@@ -299,14 +299,14 @@ def build_rows(res: Path) -> tuple[list[dict], dict]:
         if modules is None:
             modules = EXPECTED.get(key)
         row["modules"] = modules
-        # The output a derivation writes once: 2 bytes per module, plus for parametric
+        # The output a derivation writes once: 1 byte per module, plus for parametric
         # strings a 4-byte offset per module and 8 bytes per parameter.
         out_bytes = None
         if modules is not None:
-            out_bytes = 2 * modules
+            out_bytes = modules
             if key == "honda23" and g.out and "symbols" in g.out:
                 params = sum(HONDA_ARITY.get(s, 0) * c for s, c in g.out["symbols"].items())
-                out_bytes = 6 * modules + 8 * params
+                out_bytes = 5 * modules + 8 * params
         floor = out_bytes / bandwidth if out_bytes and bandwidth else None
         row["floor_s"] = floor
 
@@ -419,7 +419,7 @@ def markdown(rows: list[dict], meta: dict) -> str:
         "derive, print), with the CPU time (user + system, all threads) of the median run; "
         "peak RSS is the largest of those runs. "
         "graftal/lindenmayer and graftal/floor are ratios of times (below 1: graftal is "
-        "faster). The floor is the row's output size (2 B/module; Honda 6 B/module + 8 B/"
+        "faster). The floor is the row's output size (1 B/module; Honda 5 B/module + 8 B/"
         "parameter) divided by the memcpy bandwidth of row 6. "
         "\"Derivation in process\" is derive() alone timed inside one process "
         "(bench/derive_timing.cpp): the first run maps its buffers fresh from the kernel, "

@@ -112,8 +112,8 @@ EOF
 say "bench: memcpy probe"
 g++ -O2 -std=c++17 -o "$build/bench/memcpy_probe" "$here/memcpy_probe.cpp" ||
     die "cannot build bench/memcpy_probe.cpp"
-# Koch island n = 8: 124,630,747 modules, 2 bytes each.
-measure memcpy 1 0 120 "$build/bench/memcpy_probe" $((124630747 * 2)) 7
+# Koch island n = 8: 124,630,747 modules, 1 byte each.
+measure memcpy 1 0 120 "$build/bench/memcpy_probe" 124630747 7
 
 # ---- graftal -----------------------------------------------------------------------------
 # row key | file | n

@@ -95,7 +95,7 @@ bool chooseStreaming(const Loaded& l, const InputOptions& in, bool canStream, bo
     // run would take hours, so it is refused with a message rather than started.
     const double streamLimit = static_cast<double>(in.streamLimit);
     // The last step holds the previous string and the new one; parameters take more.
-    double perModule = l.lsystem.isParametric() ? 2 + 4 + 8 * 2 : 2;
+    double perModule = l.lsystem.isParametric() ? 1 + 4 + 8 * 2 : 1;
     double last = g.expectedModules.back(),
            previous = g.expectedModules[g.expectedModules.size() - 2];
     double bytes = (last + previous) * perModule;
