@@ -43,6 +43,7 @@ caption() {
     if [ -n "$text" ]; then
         case $text in
             *" (seed"*) text=${text%%" (seed"*} ;;
+            *" (LSFP"*) text=${text%%" (LSFP"*} ;;  # the source, not the title
             *". "*) text=${text%%". "*} ;;
         esac
         printf '%s' "${text% }"
