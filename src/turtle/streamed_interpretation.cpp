@@ -1,7 +1,7 @@
 // The turtle fed by a streamed derivation: geometry for strings too large to hold.
 #include "graftal/streaming.hpp"
-#include "planar_length.hpp"
 #include "planar_measure.hpp"
+#include "streamed_sinks.hpp"
 #include "subtree_summaries.hpp"
 #include "turtle_machine.hpp"
 
@@ -30,41 +30,6 @@ class TurtleStream : public ModuleSink {
     std::size_t index_ = 0;
 };
 
-class MeasureSink {
-  public:
-    explicit MeasureSink(StreamedMeasure& m) : m_(m) {}
-    std::uint32_t segment(const Segment& s) {
-        // A segment that goes on from the last one starts at a point already in the box:
-        // extending by it again would change nothing (a bound moves only on a strict <).
-        if (!(s.a == lastEnd_)) extend(s.a);
-        extend(s.b);
-        lastEnd_ = s.b;
-        m_.ink += turtle::inkTerm(length_(s.b.x - s.a.x, s.b.y - s.a.y),
-                                  turtle::inkWeight(s.width, m_.baseWidth));
-        return static_cast<std::uint32_t>(m_.segments++);
-    }
-    void polygon(std::span<const Vec3> v, std::uint16_t) {
-        for (const auto& p : v) extend(p);
-        ++m_.polygons;
-    }
-    void surface(const std::string&, const SurfaceInstance&) {}
-    void baseWidth(float w) { m_.baseWidth = w; }
-    void finish(bool is3D) { m_.is3D = is3D; }
-
-  private:
-    // Bounds::extend(), inline: it runs for every segment.
-    void extend(const Vec3& p) {
-        Bounds& b = m_.bounds;
-        b.min = {std::min(b.min.x, p.x), std::min(b.min.y, p.y), std::min(b.min.z, p.z)};
-        b.max = {std::max(b.max.x, p.x), std::max(b.max.y, p.y), std::max(b.max.z, p.z)};
-    }
-
-    StreamedMeasure& m_;
-    Vec3 lastEnd_{kNaN, kNaN, kNaN};  // equal to no point
-    turtle::PlanarLength length_;
-    static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-};
-
 class CountingSink : public ModuleSink {
   public:
     explicit CountingSink(StreamedMeasure& m) : m_(m) {}
@@ -75,22 +40,6 @@ class CountingSink : public ModuleSink {
 
   private:
     StreamedMeasure& m_;
-};
-
-class PictureSink {
-  public:
-    explicit PictureSink(StreamedPng& png) : png_(png) {}
-    std::uint32_t segment(const Segment& s) {
-        png_.segment(s);
-        return kNoSegment;
-    }
-    void polygon(std::span<const Vec3> v, std::uint16_t c) { png_.polygon(v, c); }
-    void surface(const std::string&, const SurfaceInstance&) {}
-    void baseWidth(float) {}
-    void finish(bool) {}
-
-  private:
-    StreamedPng& png_;
 };
 
 }  // namespace

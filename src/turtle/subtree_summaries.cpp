@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "streamed_sinks.hpp"
 #include "turtle_machine.hpp"
 
 namespace graftal {
@@ -230,41 +231,6 @@ Segment jump(turtle::TurtleState& t, const SubtreeMotion& m) {
     return Segment{from, t.position, t.width, t.color, kNoSegment, t.up};
 }
 
-class BoundsSink {
-  public:
-    explicit BoundsSink(StreamedMeasure& m) : m_(m) {}
-    std::uint32_t segment(const Segment& s) {
-        m_.bounds.extend(s.a);
-        m_.bounds.extend(s.b);
-        m_.ink += inkLength(s, m_.baseWidth);
-        ++m_.segments;
-        return kNoSegment;
-    }
-    void polygon(std::span<const Vec3>, std::uint16_t) {}
-    void surface(const std::string&, const SurfaceInstance&) {}
-    void baseWidth(float w) { m_.baseWidth = w; }
-    void finish(bool is3D) { m_.is3D = is3D; }
-
-  private:
-    StreamedMeasure& m_;
-};
-
-class DrawingSink {
-  public:
-    explicit DrawingSink(StreamedPng& png) : png_(png) {}
-    std::uint32_t segment(const Segment& s) {
-        png_.segment(s);
-        return kNoSegment;
-    }
-    void polygon(std::span<const Vec3>, std::uint16_t) {}
-    void surface(const std::string&, const SurfaceInstance&) {}
-    void baseWidth(float) {}
-    void finish(bool) {}
-
-  private:
-    StreamedPng& png_;
-};
-
 // Pictures are drawn in x and y only, so the disc need only be inside in those.
 bool inside(const Bounds& b, const Vec3& p, double r) {
     return !b.empty() && p.x - r >= b.min.x && p.x + r <= b.max.x && p.y - r >= b.min.y &&
@@ -277,8 +243,8 @@ StreamedMeasure measureSummarised(const LSystem& ls, const SubtreeSummaries& sum
                                   const RenderOptions& render, double pixelTolerance) {
     StreamedMeasure result;
     result.symbolCounts.assign(ls.symbols.size(), 0);
-    BoundsSink sink(result);
-    turtle::TurtleMachine<BoundsSink> machine(ls, sink);
+    MeasureSink sink(result);
+    turtle::TurtleMachine<MeasureSink> machine(ls, sink);
     const double pixels = std::max(1, std::max(render.width, render.height));
     walk(sums, machine, [&](const SubtreeMotion& m) {
         turtle::TurtleState& t = machine.state();
@@ -313,8 +279,8 @@ void renderSummarisedPng(const LSystem& ls, const SubtreeSummaries& sums,
     StreamedPng png(render, measure.bounds, measure.ink, measure.segments > 0, measure.baseWidth,
                     Scene::defaultPalette(), path);
     const ImageTransform transform = ImageTransform::fit(measure.bounds, render);
-    DrawingSink sink(png);
-    turtle::TurtleMachine<DrawingSink> machine(ls, sink);
+    PictureSink sink(png);
+    turtle::TurtleMachine<PictureSink> machine(ls, sink);
     walk(sums, machine, [&](const SubtreeMotion& m) {
         if (m.segments > 0 && m.radius * transform.scale > dotRadius) return false;
         Segment chord = jump(machine.state(), m);
