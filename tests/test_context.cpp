@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <random>
 
+#include "engine_paths.hpp"
 #include "rewrite/rewriting_engine.hpp"
 #include "test_helpers.hpp"
 
@@ -87,38 +88,12 @@ TEST(Context, ContextSearchCostDoesNotDependOnBranchSize) {
 
 namespace {
 
-constexpr std::size_t kNoLimit = std::size_t(1) << 40;
-
-// Rewrites `start` for `steps` steps with the generic path alone and, for 1, 2, 3 and 7
-// threads, with the engine as derivations use it, and expects the same string after every
-// step. Strings past 65536 modules are split into chunks, so that contexts cross chunk
-// boundaries. Returns the last string.
+// The engine against its generic path at 1, 2, 3 and 7 threads. Strings past 65536 modules
+// are split into chunks, so that contexts cross chunk boundaries.
 ModuleString expectSameAsGenericPath(const LSystem& ls, const ModuleString& start, int steps,
                                      const std::string& what, bool contextPath = true) {
-    RewritingEngine generic(ls, ls.productions, ls.seed, 1);
-    generic.useGenericPathOnly();
-    std::vector<ModuleString> expected{start};
-    ModuleString next;
-    for (int k = 1; k <= steps; ++k) {
-        generic.step(expected.back(), next, k, ls.tableForStep(k), kNoLimit);
-        expected.push_back(next);
-    }
-    for (unsigned threads : {1u, 2u, 3u, 7u}) {
-        RewritingEngine engine(ls, ls.productions, ls.seed, threads);
-        EXPECT_EQ(engine.usesContextPath(), contextPath) << what;
-        ModuleString s = start;
-        for (int k = 1; k <= steps; ++k) {
-            engine.step(s, next, k, ls.tableForStep(k), kNoLimit);
-            std::swap(s, next);
-            if (!(s == expected[static_cast<std::size_t>(k)])) {
-                ADD_FAILURE() << what << ": step " << k << " with " << threads << " threads ("
-                              << s.size() << " modules, expected "
-                              << expected[static_cast<std::size_t>(k)].size() << ")";
-                break;
-            }
-        }
-    }
-    return expected.back();
+    return graftal::testing::expectSameAsGenericPath(ls, start, steps, what, {1u, 2u, 3u, 7u},
+                                                     contextPath);
 }
 
 ModuleString symbolsOf(const std::string& text) {

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <iterator>
 
+#include "engine_paths.hpp"
 #include "rewrite/rewriting_engine.hpp"
 #include "test_helpers.hpp"
 
@@ -133,33 +134,12 @@ TEST(Derivation, SameResultForAnyThreadCount) {
 
 namespace {
 
-// Rewrites the axiom for `steps` steps with the generic path alone (choose() and matches()
-// for every module) and with the engine as derivations use it, at 1 and 3 threads, and
-// expects the same modules and the same doubles after every step.
+// The axiom rewritten by the engine and by the generic path alone (choose() and matches()
+// for every module), at 1 and 3 threads: the same modules and doubles after every step.
 void expectParametricSameAsGenericPath(const LSystem& ls, int steps, const std::string& what) {
-    const std::size_t noLimit = std::size_t(1) << 40;
     ModuleString start = ls.axiom;
     if (!start.hasParameters()) start.rawParamStart().assign(start.size() + 1, 0);
-    RewritingEngine generic(ls, ls.productions, ls.seed, 1);
-    generic.useGenericPathOnly();
-    std::vector<ModuleString> expected{start};
-    ModuleString next;
-    for (int k = 1; k <= steps; ++k) {
-        generic.step(expected.back(), next, k, ls.tableForStep(k), noLimit);
-        expected.push_back(next);
-    }
-    for (unsigned threads : {1u, 3u}) {
-        RewritingEngine engine(ls, ls.productions, ls.seed, threads);
-        ModuleString s = start;
-        for (int k = 1; k <= steps; ++k) {
-            engine.step(s, next, k, ls.tableForStep(k), noLimit);
-            std::swap(s, next);
-            if (!(s == expected[static_cast<std::size_t>(k)])) {
-                ADD_FAILURE() << what << ": step " << k << " with " << threads << " threads";
-                break;
-            }
-        }
-    }
+    graftal::testing::expectSameAsGenericPath(ls, start, steps, what, {1u, 3u});
 }
 
 }  // namespace
