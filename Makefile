@@ -4,7 +4,7 @@
 
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
-DEBIAN_PACKAGES := cmake g++ make pkg-config libgtest-dev libcli11-dev libcairo2-dev \
+DEBIAN_PACKAGES := cmake g++ make pkg-config ccache libgtest-dev libcli11-dev libcairo2-dev \
                    nlohmann-json3-dev poppler-utils libembree-dev libtinygltf-dev
 # Node.js and npm run the glTF validator in the tests; a machine that already has them
 # (from any source) keeps its own, since Debian's npm conflicts with other Node builds.
