@@ -136,7 +136,7 @@ DerivationDiagram layoutDerivationDiagram(const std::vector<ModuleString>& steps
     // Cells that fit in a row, counting an ellipsis cell as wide as the text it holds.
     const double rowRoom = areaW - stepColumn * h;
     const std::size_t fitCells =
-        std::max<std::size_t>(1, static_cast<std::size_t>((rowRoom + gap) / pitch));
+        std::max<std::size_t>(1, static_cast<std::size_t>((rowRoom + gap) / pitch + 1e-6));
     auto ellipsisSlots = [&](std::size_t hidden, const char* what) {
         const double textW =
             (characters(moreText(hidden, what)) + 1) * kCharWidth * d.parameterSize;
