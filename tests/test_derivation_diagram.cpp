@@ -281,3 +281,33 @@ TEST(Gallery, NoExampleRendersBlank) {
     for (std::size_t i = 0; i < files.size(); ++i)
         EXPECT_TRUE(problems[i].empty()) << files[i].filename().string() << ": " << problems[i];
 }
+
+// ABOP's trees had widths in pixels; in model units they must stay slender.
+TEST(GalleryModels, AbopTreesHaveSlenderTrunks) {
+    for (const char* name : {"honda-monopodial-tree.l", "aono-kunii-sympodial-tree.l"}) {
+        SCOPED_TRACE(name);
+        LSystem ls = loadLSystem(fs::path(GRAFTAL_EXAMPLES_DIR) / name);
+        Scene scene = interpret(ls, applyHomomorphism(ls, derive(ls)));
+        ASSERT_FALSE(scene.segments.empty());
+        float widest = 0;
+        for (const Segment& s : scene.segments) widest = std::max(widest, s.width);
+        const Bounds b = scene.bounds();
+        EXPECT_LT(widest, 0.05 * (b.max.y - b.min.y))
+            << "the trunk is a twentieth of the height at most";
+    }
+}
+
+// To the turtle Fl and Fr are both F: the Fl/Fr dragon is the same curve as the l/r one.
+TEST(GalleryModels, FlFrDragonDrawsTheDragon) {
+    auto sceneOf = [](const char* name) {
+        LSystem ls = loadLSystem(fs::path(GRAFTAL_EXAMPLES_DIR) / name);
+        return interpret(ls, applyHomomorphism(ls, derive(ls)));
+    };
+    Scene flfr = sceneOf("fig2.6-dragon-curve-fl-fr.l"), lr = sceneOf("fig2.6-dragon-curve-lr.l");
+    EXPECT_EQ(flfr.segments.size(), 1024u);
+    ASSERT_EQ(flfr.segments.size(), lr.segments.size());
+    for (std::size_t i = 0; i < lr.segments.size(); ++i) {
+        EXPECT_NEAR(flfr.segments[i].b.x, lr.segments[i].b.x, 1e-9);
+        EXPECT_NEAR(flfr.segments[i].b.y, lr.segments[i].b.y, 1e-9);
+    }
+}
