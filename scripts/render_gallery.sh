@@ -33,20 +33,16 @@ if [ ${#files[@]} -eq 0 ]; then
 fi
 mkdir -p "$outdir" || exit 2
 
-# The caption of a picture: the leading /* */ comment up to "(seed" (or its first
-# sentence), e.g. "Fig 2.2 Generating a quadratic Koch island"; pfg data files have no
-# comment and get a caption from their name.
+# The caption of a picture: the first line of the file's leading /* */ comment, which every
+# example keeps for its one-line title (the source follows on the next lines), e.g.
+# "Fig 2.2 Generating a quadratic Koch island"; pfg data files have no comment and get a
+# caption from their name.
 caption() {
     local file=$1 name=$2 text
-    text=$(awk 'NR == 1 && !/^\/\*/ { exit } { print } /\*\// { exit }' "$file" |
-           tr '\n' ' ' | sed -e 's|^/\*[[:space:]]*||' -e 's|\*/.*$||' -e 's/[[:space:]]\+/ /g')
+    text=$(head -n 1 "$file" | sed -n -e '/^\/\*/!q' -e 's|^/\*[[:space:]]*||' \
+           -e 's|[[:space:]]*\*/.*$||' -e 's/[[:space:]]\+/ /g' -e 's/[[:space:]]*$//' -e p)
     if [ -n "$text" ]; then
-        case $text in
-            *" (seed"*) text=${text%%" (seed"*} ;;
-            *" (LSFP"*) text=${text%%" (LSFP"*} ;;  # the source, not the title
-            *". "*) text=${text%%". "*} ;;
-        esac
-        printf '%s' "${text% }"
+        printf '%s' "$text"
     else
         case $name in
             fig3.11?-hogeweg-hesper)
@@ -64,9 +60,13 @@ index="$outdir/index.md"
 {
     echo "# graftal gallery"
     echo
-    echo "The example L-systems of *Lindenmayer Systems, Fractals, and Plants*"
-    echo "(Prusinkiewicz & Hanan), rendered by \`scripts/render_gallery.sh\` from"
-    echo "\`examples/*.l\`. Click a picture for the 800x800 image."
+    echo "The example L-systems, rendered by \`scripts/render_gallery.sh\` from \`examples/*.l\`."
+    echo "Most come from *Lindenmayer Systems, Fractals, and Plants* (Prusinkiewicz & Hanan;"
+    echo "\"Fig\" and \"Sec\" are its figures and sections); others from *The Algorithmic"
+    echo "Beauty of Plants* (\"ABOP\"), the SIGGRAPH '88 paper *Developmental Models of"
+    echo "Herbaceous Plants*, lecture notes on L-systems and a paper on a 3D L-system viewer,"
+    echo "as each caption says. L-systems whose strings draw nothing are shown as their"
+    echo "derivation, one row of cells per step. Click a picture for the 800x800 image."
     echo
     echo "| picture | figure | file |"
     echo "| --- | --- | --- |"

@@ -153,11 +153,19 @@ TEST(LectureOpenLSystem, DerivesThePrintedStringsExactly) {
     EXPECT_EQ(derived(ls, 2), "F(0,0)F(0,1)F(0,2)A?E(2)");
     EXPECT_EQ(derived(ls, 3), "F(0,0)F(0,1)F(0,2)?E(3)");
     EXPECT_EQ(derived(ls, 4), "F(0,0)F(0,1)F(0,2)?E(4)") << "the plant stops; time goes on";
+    // The picture is the derivation: the string draws nothing (the homomorphism erases F),
+    // and the diagram's rows are the four printed strings, ?E's answer under ?E.
     Scene scene = interpret(ls, applyHomomorphism(ls, derive(ls)));
-    Bounds b = scene.bounds();
-    EXPECT_NEAR(b.max.y, 2, 1e-12) << "a stem 2 units high";
-    EXPECT_NEAR(b.min.x, 0, 1e-12);
-    EXPECT_NEAR(b.max.x, 0, 1e-12);
+    EXPECT_TRUE(scene.segments.empty());
+    std::vector<ModuleString> steps;
+    for (int k = 0; k <= 3; ++k) steps.push_back(derive(ls, k));
+    RenderOptions o;
+    DerivationDiagram d = layoutDerivationDiagram(steps, ls.symbols, o);
+    ASSERT_EQ(d.rows.size(), 4u);
+    EXPECT_EQ(d.rows[3].cells.size(), 4u);
+    EXPECT_EQ(d.rows[3].cells.back().label, "?E");
+    EXPECT_EQ(d.rows[3].cells.back().parameters, "3");
+    EXPECT_EQ(d.rows[1].cells[1].parameters, "0,1");
 }
 
 TEST(LectureOpenLSystem, APositionReadingDiffersOnlyInTheLastValue) {

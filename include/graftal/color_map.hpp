@@ -16,6 +16,12 @@ namespace graftal {
 inline constexpr std::size_t kColorMapEntries = 256;
 inline constexpr std::size_t kColorMapBytes = kColorMapEntries * 3;
 
+// The palette of 3D pictures and meshes when a file gives no colour map: the 2D palette
+// (Scene::defaultPalette, in the same order, so `;(1)` is a leaf green in both) except that
+// index 0, the colour of every uncoloured stem, is a bark brown light enough to show its
+// shading instead of the near-black ink of line art.
+std::vector<Rgb> defaultPalette3D();
+
 // The 256 colours of a .map file's bytes. Any other size throws Error naming `fileName`
 // and saying how many bytes were expected.
 std::vector<Rgb> parseColorMap(std::span<const std::uint8_t> bytes, const std::string& fileName);

@@ -4,6 +4,7 @@
 #include "graftal/bspline.hpp"
 #include "graftal/color_map.hpp"
 #include "graftal/derivation.hpp"
+#include "graftal/derivation_diagram.hpp"
 #include "graftal/diagnostics.hpp"
 #include "graftal/environment.hpp"
 #include "graftal/expression.hpp"

@@ -36,6 +36,7 @@ struct RenderCommandOptions {
     int tubeSides = 8;
     std::optional<int> spline;  // --spline N: B-spline subdivisions (0: off)
     bool sizeGiven = false, backgroundGiven = false;
+    bool derivation = false;  // --derivation: draw the derivation steps, not the turtle's picture
 };
 
 int runDerive(const InputOptions& in, bool homomorphism);

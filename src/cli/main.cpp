@@ -72,6 +72,8 @@ int main(int argc, char** argv) {
     render->add_option("--color", color, "line colour, #rrggbb (default: the palette)");
     render->add_option("--margin", out.render.margin, "margin, fraction of the picture")
         ->check(CLI::Range(0.0, 0.45));
+    render->add_flag("--derivation", out.derivation,
+                     "draw the derivation: one row of labelled cells per step (.svg .png .pdf)");
     render->add_option("--view", out.view,
                        "draw a 3D model as 2D line art: front, back, side, top");
     render->add_option("--viewpoint", viewpoint, "3D camera position x,y,z (default: framed)");

@@ -9,6 +9,7 @@
 #include "graftal/bspline.hpp"
 #include "graftal/color_map.hpp"
 #include "graftal/derivation.hpp"
+#include "graftal/derivation_diagram.hpp"
 #include "graftal/mesh.hpp"
 #include "graftal/projection.hpp"
 #include "graftal/render3d.hpp"
@@ -77,6 +78,22 @@ RaytraceOptions raytraceOptions(const LSystem& ls, const RenderCommandOptions& o
     return r;
 }
 
+// The derivation as a diagram: the axiom and the string after every step.
+void renderDerivation(const LSystem& ls, int steps, const InputOptions& in,
+                      const RenderCommandOptions& out) {
+    std::vector<ModuleString> strings;
+    Derivation derivation(ls, derivationOptions(in));
+    strings.push_back(derivation.current());
+    for (int k = 0; k < steps; ++k) {
+        derivation.step();
+        strings.push_back(derivation.current());
+    }
+    endProgressLine();
+    RenderOptions render = out.render;
+    if (!out.backgroundGiven && ls.view.background) render.background = *ls.view.background;
+    writeDerivationDiagram(strings, ls.symbols, render, out.output);
+}
+
 }  // namespace
 
 int runRender(const InputOptions& in, const RenderCommandOptions& out) {
@@ -95,6 +112,15 @@ int runRender(const InputOptions& in, const RenderCommandOptions& out) {
             throw Error(SourceLocation{"graftal", 0, 0},
                         "--view draws 2D line art; it applies "
                         "to .svg, .png and .pdf, not 3D files");
+    }
+
+    if (out.derivation) {
+        if (*kind != OutputKind::Picture)
+            throw Error(SourceLocation{"graftal", 0, 0},
+                        "--derivation draws a picture; use .svg, .png or .pdf");
+        Loaded l = loadInput(in);
+        renderDerivation(l.lsystem, l.steps, in, out);
+        return 0;
     }
 
     {
@@ -121,6 +147,15 @@ int runRender(const InputOptions& in, const RenderCommandOptions& out) {
         scene.palette = loadColorMap(map);
     }
 
+    if (*kind == OutputKind::Picture && scene.segments.empty() && scene.polygonCount() == 0 &&
+        scene.surfaces.empty()) {
+        // No turtle meaning (Anabaena's cells, the Fibonacci words): the derivation is
+        // the picture the book draws for such systems.
+        note(in, "the string draws nothing; drawing its derivation instead");
+        renderDerivation(d.lsystem, d.steps, in, out);
+        return 0;
+    }
+
     bool threeD = scene.is3D && !view;
     if (*kind == OutputKind::Picture &&
         !(threeD && imageFormatFor(out.output) == ImageFormat::Png)) {
@@ -136,6 +171,8 @@ int runRender(const InputOptions& in, const RenderCommandOptions& out) {
         return 0;
     }
 
+    // Uncoloured 3D plants are bark brown, not line art's ink, so their shading shows.
+    if (d.lsystem.view.colorMap.empty()) scene.palette = defaultPalette3D();
     SurfaceLibrary surfaces = surfacesFor(d.lsystem, in.file);
     MeshOptions mo;
     mo.tubeSides = out.tubeSides;

@@ -34,6 +34,14 @@ std::uint8_t toByte(float v) {
 
 }  // namespace
 
+std::vector<Rgb> defaultPalette3D() {
+    std::vector<Rgb> palette = Scene::defaultPalette();
+    // A mid bark brown: lit and shaded sides stay apart once the ray tracer has decoded it
+    // to linear light (the ink of index 0 is about 1 % there: a silhouette).
+    palette[0] = {0x8f / 255.0f, 0x6b / 255.0f, 0x47 / 255.0f};
+    return palette;
+}
+
 std::vector<Rgb> parseColorMap(std::span<const std::uint8_t> bytes, const std::string& fileName) {
     if (bytes.size() != kColorMapBytes)
         throw mapError(fileName, "not a colour map: it has " + std::to_string(bytes.size()) +

@@ -1,0 +1,269 @@
+// Painting a laid-out derivation diagram: SVG text, or Cairo for PNG and PDF. Both draw
+// the same things in the same order: background, step numbers, then each cell as a rounded
+// box with its symbol's name and, smaller below it, its parameters.
+#include <cairo-pdf.h>
+#include <cairo.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <memory>
+#include <sstream>
+
+#include "graftal/derivation_diagram.hpp"
+#include "graftal/diagnostics.hpp"
+
+namespace graftal {
+
+namespace {
+
+constexpr Rgb kInk{0.13f, 0.13f, 0.13f};      // text and outlines
+constexpr Rgb kStepInk{0.45f, 0.45f, 0.45f};  // step numbers
+constexpr const char* kFont = "DejaVu Sans";
+constexpr double kCornerRadius = 0.18;  // of the cell height
+
+// Baselines of the label and the parameters in a cell of height h at y.
+double labelBaseline(const DiagramCell& c, double labelSize) {
+    return c.parameters.empty() ? c.y + 0.5 * c.height + 0.36 * labelSize : c.y + 0.47 * c.height;
+}
+double parameterBaseline(const DiagramCell& c) {
+    return c.y + 0.84 * c.height;
+}
+
+// ---- SVG ----
+
+std::string number(double v) {
+    std::ostringstream s;
+    s.imbue(std::locale::classic());
+    s << std::lround(v * 100) / 100.0;
+    return s.str();
+}
+
+std::string hex(const Rgb& c) {
+    static const char kDigits[] = "0123456789abcdef";
+    std::string s = "#";
+    for (float v : {c.r, c.g, c.b}) {
+        const float clamped = std::isfinite(v) ? std::fmin(std::fmax(v, 0.0f), 1.0f) : 0.0f;
+        const int byte = static_cast<int>(std::lround(clamped * 255.0f));
+        s += kDigits[byte >> 4];
+        s += kDigits[byte & 15];
+    }
+    return s;
+}
+
+std::string escaped(const std::string& text) {
+    std::string s;
+    for (char ch : text) {
+        switch (ch) {
+            case '<':
+                s += "&lt;";
+                break;
+            case '>':
+                s += "&gt;";
+                break;
+            case '&':
+                s += "&amp;";
+                break;
+            case '"':
+                s += "&quot;";
+                break;
+            default:
+                s += ch;
+        }
+    }
+    return s;
+}
+
+// ---- Cairo ----
+
+using SurfacePtr = std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)>;
+using ContextPtr = std::unique_ptr<cairo_t, decltype(&cairo_destroy)>;
+
+Error cairoError(const std::filesystem::path& path, const std::string& what, cairo_status_t st) {
+    return Error(SourceLocation{path.string(), 0, 0}, what + ": " + cairo_status_to_string(st));
+}
+
+void setSource(cairo_t* cr, const Rgb& c) {
+    cairo_set_source_rgb(cr, c.r, c.g, c.b);
+}
+
+// Writes `text` with its horizontal anchor at x: 0 left, 0.5 centre, 1 right.
+void showText(cairo_t* cr, const std::string& text, double x, double baseline, double anchor) {
+    cairo_text_extents_t e;
+    cairo_text_extents(cr, text.c_str(), &e);
+    cairo_move_to(cr, x - anchor * e.x_advance, baseline);
+    cairo_show_text(cr, text.c_str());
+}
+
+void roundedBox(cairo_t* cr, const DiagramCell& c) {
+    const double r = std::min(kCornerRadius * c.height, c.width / 2);
+    cairo_new_sub_path(cr);
+    cairo_arc(cr, c.x + c.width - r, c.y + r, r, -M_PI / 2, 0);
+    cairo_arc(cr, c.x + c.width - r, c.y + c.height - r, r, 0, M_PI / 2);
+    cairo_arc(cr, c.x + r, c.y + c.height - r, r, M_PI / 2, M_PI);
+    cairo_arc(cr, c.x + r, c.y + r, r, M_PI, 3 * M_PI / 2);
+    cairo_close_path(cr);
+}
+
+void drawDiagram(cairo_t* cr, const DerivationDiagram& d) {
+    setSource(cr, d.background);
+    cairo_paint(cr);
+    const double outline = std::max(1.0, d.labelSize / 14);
+    for (const DiagramRow& row : d.rows) {
+        cairo_select_font_face(cr, kFont, CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+        cairo_set_font_size(cr, d.parameterSize * 1.2);
+        setSource(cr, kStepInk);
+        if (!row.gap)
+            showText(cr, std::to_string(row.step), row.labelX, row.labelY + 0.4 * d.parameterSize,
+                     1);
+        for (const DiagramCell& c : row.cells) {
+            roundedBox(cr, c);
+            setSource(cr, c.fill);
+            cairo_fill_preserve(cr);
+            setSource(cr, kInk);
+            cairo_set_line_width(cr, outline);
+            if (c.ellipsis) {
+                const double dash = 0.12 * c.height;
+                cairo_set_dash(cr, &dash, 1, 0);
+            }
+            cairo_stroke(cr);
+            cairo_set_dash(cr, nullptr, 0, 0);
+            cairo_select_font_face(cr, kFont, CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_BOLD);
+            cairo_set_font_size(cr, d.labelSize);
+            showText(cr, c.label, c.x + c.width / 2, labelBaseline(c, d.labelSize), 0.5);
+            if (!c.parameters.empty()) {
+                cairo_select_font_face(cr, kFont, CAIRO_FONT_SLANT_NORMAL,
+                                       CAIRO_FONT_WEIGHT_NORMAL);
+                cairo_set_font_size(cr, d.parameterSize);
+                showText(cr, c.parameters, c.x + c.width / 2, parameterBaseline(c), 0.5);
+            }
+        }
+    }
+}
+
+void checkSize(const DerivationDiagram& d, const std::filesystem::path& path, double limit) {
+    if (!(d.width >= 1 && d.height >= 1 && d.width <= limit && d.height <= limit))
+        throw Error(SourceLocation{path.string(), 0, 0},
+                    "image size " + number(d.width) + "x" + number(d.height) +
+                        " is out of range (1 to " + number(limit) + " per side)");
+}
+
+void writePngFile(const DerivationDiagram& d, const std::filesystem::path& path) {
+    checkSize(d, path, 32767);
+    SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, static_cast<int>(d.width),
+                                                  static_cast<int>(d.height)),
+                       &cairo_surface_destroy);
+    if (auto st = cairo_surface_status(surface.get()); st != CAIRO_STATUS_SUCCESS)
+        throw cairoError(path, "cannot create the image", st);
+    {
+        ContextPtr cr(cairo_create(surface.get()), &cairo_destroy);
+        drawDiagram(cr.get(), d);
+        if (auto st = cairo_status(cr.get()); st != CAIRO_STATUS_SUCCESS)
+            throw cairoError(path, "cannot draw the derivation", st);
+    }
+    cairo_surface_flush(surface.get());
+    if (auto st = cairo_surface_write_to_png(surface.get(), path.c_str());
+        st != CAIRO_STATUS_SUCCESS)
+        throw cairoError(path, "cannot write PNG", st);
+}
+
+void writePdfFile(const DerivationDiagram& d, const std::filesystem::path& path) {
+    checkSize(d, path, 14400);
+    SurfacePtr surface(cairo_pdf_surface_create(path.c_str(), d.width, d.height),
+                       &cairo_surface_destroy);
+    if (auto st = cairo_surface_status(surface.get()); st != CAIRO_STATUS_SUCCESS)
+        throw cairoError(path, "cannot create PDF", st);
+    cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATOR, "graftal");
+    {
+        ContextPtr cr(cairo_create(surface.get()), &cairo_destroy);
+        drawDiagram(cr.get(), d);
+        cairo_show_page(cr.get());
+        if (auto st = cairo_status(cr.get()); st != CAIRO_STATUS_SUCCESS)
+            throw cairoError(path, "cannot draw the derivation", st);
+    }
+    cairo_surface_finish(surface.get());
+    if (auto st = cairo_surface_status(surface.get()); st != CAIRO_STATUS_SUCCESS)
+        throw cairoError(path, "cannot write PDF", st);
+}
+
+void writeSvgFile(const DerivationDiagram& d, const std::filesystem::path& path) {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    if (!out)
+        throw Error(SourceLocation{path.string(), 0, 0},
+                    std::string("cannot create file: ") + std::strerror(errno));
+    writeDerivationDiagramSvg(d, out);
+    out.close();
+    if (!out)
+        throw Error(SourceLocation{path.string(), 0, 0},
+                    "cannot write SVG: write failed (disk full?)");
+}
+
+}  // namespace
+
+void writeDerivationDiagramSvg(const DerivationDiagram& d, std::ostream& out) {
+    const std::string w = number(d.width), h = number(d.height);
+    out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+        << "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" << w
+        << "\" height=\"" << h << "\" viewBox=\"0 0 " << w << " " << h << "\">\n"
+        << "<rect x=\"0\" y=\"0\" width=\"" << w << "\" height=\"" << h << "\" fill=\""
+        << hex(d.background) << "\"/>\n"
+        << "<g font-family=\"" << kFont << ", Arial, Helvetica, sans-serif\">\n";
+    const double outline = std::max(1.0, d.labelSize / 14);
+    for (const DiagramRow& row : d.rows) {
+        if (!row.gap)
+            out << "<text x=\"" << number(row.labelX) << "\" y=\""
+                << number(row.labelY + 0.4 * d.parameterSize) << "\" font-size=\""
+                << number(d.parameterSize * 1.2) << "\" text-anchor=\"end\" fill=\""
+                << hex(kStepInk) << "\">" << row.step << "</text>\n";
+        for (const DiagramCell& c : row.cells) {
+            const double cx = c.x + c.width / 2;
+            out << "<rect x=\"" << number(c.x) << "\" y=\"" << number(c.y) << "\" width=\""
+                << number(c.width) << "\" height=\"" << number(c.height) << "\" rx=\""
+                << number(std::min(kCornerRadius * c.height, c.width / 2)) << "\" fill=\""
+                << hex(c.fill) << "\" stroke=\"" << hex(kInk) << "\" stroke-width=\""
+                << number(outline) << "\"" << (c.ellipsis ? " stroke-dasharray=\"4 3\"" : "")
+                << "/>\n"
+                << "<text x=\"" << number(cx) << "\" y=\"" << number(labelBaseline(c, d.labelSize))
+                << "\" font-size=\"" << number(d.labelSize)
+                << "\" font-weight=\"bold\" text-anchor=\"middle\" fill=\"" << hex(kInk) << "\">"
+                << escaped(c.label) << "</text>\n";
+            if (!c.parameters.empty())
+                out << "<text x=\"" << number(cx) << "\" y=\"" << number(parameterBaseline(c))
+                    << "\" font-size=\"" << number(d.parameterSize)
+                    << "\" text-anchor=\"middle\" fill=\"" << hex(kInk) << "\">"
+                    << escaped(c.parameters) << "</text>\n";
+        }
+    }
+    out << "</g>\n</svg>\n";
+    out.flush();
+    if (!out) throw Error(SourceLocation{}, "cannot write SVG: output stream failed");
+}
+
+void writeDerivationDiagram(const DerivationDiagram& d, const std::filesystem::path& path) {
+    const std::optional<ImageFormat> format = imageFormatFor(path);
+    if (!format)
+        throw Error(SourceLocation{path.string(), 0, 0},
+                    "unknown image file extension '" + path.extension().string() +
+                        "'; a derivation diagram is drawn to .svg, .png or .pdf");
+    writeFileAtomically(path, [&](const std::filesystem::path& temporary) {
+        switch (*format) {
+            case ImageFormat::Svg:
+                writeSvgFile(d, temporary);
+                return;
+            case ImageFormat::Png:
+                writePngFile(d, temporary);
+                return;
+            case ImageFormat::Pdf:
+                writePdfFile(d, temporary);
+                return;
+        }
+    });
+}
+
+void writeDerivationDiagram(const std::vector<ModuleString>& steps, const SymbolTable& symbols,
+                            const RenderOptions& o, const std::filesystem::path& path) {
+    writeDerivationDiagram(layoutDerivationDiagram(steps, symbols, o), path);
+}
+
+}  // namespace graftal
