@@ -56,11 +56,10 @@ for target in "$@"; do
         -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1 -print_final_stats=1 \
         -artifact_prefix="$findings/" "$corpus" $seeds > "$log" 2>&1 || true
     elapsed=$(($(date +%s) - start))
-    # Fork mode's progress lines: "#N: cov: C ft: F corp: K exec/s: E oom/timeout/crash: ...".
+    # Fork mode's progress lines: "#EXECS: cov: C ft: F corp: K exec/s E oom/timeout/crash:
+    # O/T/C time: Ss job: J dft_time: D"; the last one has the run's totals.
     last=$(grep -E '^#[0-9]+: cov:' "$log" | tail -1 || true)
-    execs=$(grep -E '^#[0-9]+: cov:' "$log" | tail -1 | sed -E 's/^#[0-9]+: .* total_execs?: ?([0-9]+).*/\1/' || true)
     found=$(($(ls "$findings" | wc -l) - before))
-    line="$(date -u +%Y-%m-%dT%H:%MZ) $target ${elapsed}s new-findings=$found | $last"
-    echo "$line" | tee -a "$summary"
-    : "$execs"
+    echo "$(date -u +%Y-%m-%dT%H:%MZ) $target ${elapsed}s new-findings=$found | $last" |
+        tee -a "$summary"
 done
