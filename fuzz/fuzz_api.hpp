@@ -77,7 +77,9 @@ struct RunLimits {
     std::size_t memoryLimit = std::size_t(8) << 20;  // bytes of module string
     std::size_t maxModules = 20000;                  // no further step once the string is longer
     std::chrono::milliseconds budget{300};           // no further step once this is spent
-    int imageSize = 48;                              // pixels of the PNG and SVG
+    // Pixels of the PNG and SVG: the command's default, since what Cairo does with an
+    // extreme stroke depends on the picture's size (a 48-pixel PNG hides some).
+    int imageSize = 800;
 };
 
 // Answers ?E with zeros: stands in for the `process` environment, which would run the
