@@ -1,6 +1,7 @@
 # The two commands of the README: `make demo` and `make test`. Each installs the Debian
 # packages that are missing, configures, builds, and then renders the gallery or runs
-# every test.
+# every test. `make fuzz` builds the fuzz targets with clang, libFuzzer and the sanitizers
+# in their own folder and runs each for FUZZ_SECONDS (docs/reliability.md).
 
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
@@ -12,19 +13,34 @@ NODE_PACKAGES := $(shell command -v node >/dev/null 2>&1 || echo nodejs) \
                  $(shell command -v npm >/dev/null 2>&1 || echo npm)
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: all deps configure build test test-tools demo gallery bench clean
+# The fuzzing build: Debian's clang and its libFuzzer runtime (libclang-rt-dev depends on
+# the default clang's libclang-rt-N-dev, which holds libclang_rt.fuzzer-x86_64.a). The whole
+# library is compiled with the sanitizers, through this folder's CMAKE_CXX_FLAGS.
+FUZZ_BUILD_DIR ?= build-fuzz
+FUZZ_SECONDS ?= 300
+FUZZ_TARGETS ?= parse derive surface expression
+FUZZ_PACKAGES := clang libclang-rt-dev
+FUZZ_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=undefined \
+              -fsanitize=fuzzer-no-link -fno-omit-frame-pointer -g
+
+.PHONY: all deps configure build test test-tools demo gallery bench clean fuzz-deps fuzz-build fuzz
 
 all: build
 
+# Installs the Debian packages of $(1) that are missing.
+define install-missing
+@missing=""; for p in $(1); do \
+  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "install ok installed" || missing="$$missing $$p"; \
+done; \
+if [ -n "$$missing" ]; then \
+  echo "installing:$$missing"; \
+  $(SUDO) apt-get update -qq && \
+  DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq --no-install-recommends $$missing; \
+fi
+endef
+
 deps:
-	@missing=""; for p in $(DEBIAN_PACKAGES) $(NODE_PACKAGES); do \
-	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "install ok installed" || missing="$$missing $$p"; \
-	done; \
-	if [ -n "$$missing" ]; then \
-	  echo "installing:$$missing"; \
-	  $(SUDO) apt-get update -qq && \
-	  DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq --no-install-recommends $$missing; \
-	fi
+	$(call install-missing,$(DEBIAN_PACKAGES) $(NODE_PACKAGES))
 
 configure: deps
 	@cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release > /dev/null
@@ -50,6 +66,22 @@ gallery: demo
 
 bench: build
 	@bench/run.sh $(BUILD_DIR)
+
+fuzz-deps: deps
+	$(call install-missing,$(FUZZ_PACKAGES))
+
+# RelWithDebInfo at -O1 without NDEBUG: the library's assertions stay on while fuzzing.
+fuzz-build: fuzz-deps
+	@cmake -S . -B $(FUZZ_BUILD_DIR) -DCMAKE_CXX_COMPILER=clang++ -DGRAFTAL_FUZZ=ON \
+	  -DGRAFTAL_BUILD_TESTS=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" -DCMAKE_CXX_FLAGS="$(FUZZ_FLAGS)" > /dev/null
+	@cmake --build $(FUZZ_BUILD_DIR) -j $(JOBS) --target graftal_fuzzers
+
+# New corpus entries go to $(FUZZ_BUILD_DIR)/corpus/<target>, crashes, timeouts and
+# out-of-memory inputs to $(FUZZ_BUILD_DIR)/findings/<target>; nothing is written into
+# the repository.
+fuzz: fuzz-build
+	@fuzz/run_fuzzers.sh $(FUZZ_BUILD_DIR) $(FUZZ_SECONDS) $(FUZZ_TARGETS)
 
 clean:
 	rm -rf $(BUILD_DIR)

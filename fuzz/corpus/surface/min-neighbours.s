@@ -1,0 +1,33 @@
+-1 1 0 1 0 0
+CONTACT POINT X: 0 Y: 0 Z: 0
+END POINT X: 0 Y: 1 Z: 0
+HEADING X: 0 Y: 1 Z: 0
+UP X: 0 Y: 0 Z: 1
+SIZE: 2
+a
+TOP COLOR: 1 DIFFUSE: 1 BOTTOM COLOR: 1 DIFFUSE: 1
+AL: ~ A: c AR: ~
+L: ~ R: b
+BL: ~ B: ~ BR: ~
+0 0 0 0 0 0 0 0 0 0 0 0
+0 0 0 0 0 0 0 0 0 0 0 0
+0 0 0 0 0 0 0 0 0 0 0 0
+0 0 0 0 0 0 0 0 0 0 0 0
+b
+TOP COLOR: 1 DIFFUSE: 1 BOTTOM COLOR: 1 DIFFUSE: 1
+AL: ~ A: ~ AR: ~
+L: a R: ~
+BL: ~ B: ~ BR: ~
+1 0 0 1 0 0 1 0 0 1 0 0
+1 1 0 1 1 0 1 1 0 1 1 0
+1 1 1 1 1 1 1 1 1 1 1 1
+-1 -1 -1 -1 -1 -1 -1 -1 -1 -1 -1 -1
+c
+TOP COLOR: 1 DIFFUSE: 1 BOTTOM COLOR: 1 DIFFUSE: 1
+AL: ~ A: ~ AR: ~
+L: ~ R: ~
+BL: ~ B: a BR: ~
+0 1 0 0 1 0 0 1 0 0 1 0
+0 2 0 0 2 0 0 2 0 0 2 0
+0 3 0 0 3 0 0 3 0 0 3 0
+0 4 0 0 4 0 0 4 0 0 4 0
