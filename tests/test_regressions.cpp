@@ -32,3 +32,34 @@ TEST(Regressions, AFormalMadeOfVerticalTabIsNotAName) {
     EXPECT_NE(r.err.find("blank-formal.l:1:3"), std::string::npos) << r.err;
     EXPECT_EQ(r.out, "");
 }
+
+TEST(Regressions, DeeplyNestedParenthesesAreAnErrorNotAStackOverflow) {
+    auto nested = [](int depth) {
+        return "Lsystem: 1\naxiom: F(" + std::string(depth, '(') + "1" + std::string(depth, ')') +
+               ")\nendlsystem\n";
+    };
+    EXPECT_EQ(parseError(nested(200)), "");
+    EXPECT_EQ(parseError(nested(10200)),
+              "test.l:2:266: error: expression nested more than 256 levels deep");
+    EXPECT_EQ(parseError("Lsystem: 1\naxiom: F(" + std::string(10000, '-') + "1)\nendlsystem\n"),
+              "test.l:2:266: error: expression nested more than 256 levels deep");
+    TempDir t;
+    auto f = t.write("deep.l", nested(10200));
+    auto r = runGraftal("derive " + f.string());
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("deep.l:2:266: error: expression nested"), std::string::npos) << r.err;
+    EXPECT_EQ(r.out, "");
+}
+
+TEST(Regressions, DeeplyNestedBranchesAreDerivedAndDrawn) {
+    const int depth = 100000;
+    TempDir t;
+    auto f = t.write("branches.l", "Lsystem: 1\nderivation length: 1\naxiom: A" +
+                                       std::string(depth, '[') + "F" + std::string(depth, ']') +
+                                       "B\nF --> F[+F]\nA > B --> C\nendlsystem\n");
+    auto r = runGraftal("stats " + f.string());
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("\"segments\": 2"), std::string::npos) << r.out.substr(0, 300);
+    r = runGraftal("render -o " + (t.path() / "b.png").string() + " " + f.string());
+    EXPECT_EQ(r.status, 0) << r.err;
+}

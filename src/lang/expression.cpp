@@ -204,6 +204,19 @@ class ExpressionCompiler {
     }
 
     void parseUnary() {
+        // Every nesting (parentheses, arguments, unary signs, powers, #define) passes here;
+        // bounding it keeps a hostile file from overflowing the stack.
+        if (depth_ >= kMaxNesting) {
+            fail(pos_,
+                 "expression nested more than " + std::to_string(kMaxNesting) + " levels deep");
+            return;
+        }
+        ++depth_;
+        parseUnaryBelowLimit();
+        --depth_;
+    }
+
+    void parseUnaryBelowLimit() {
         if (accept("-")) {
             parseUnary();
             emit(Expression::Op::Neg);
@@ -309,6 +322,7 @@ class ExpressionCompiler {
                 DiagnosticList inner;
                 ExpressionCompiler sub(it->second, at(start), scope_, inner);
                 sub.expanding_ = expanding_;
+                sub.depth_ = depth_;
                 sub.expanding_.insert(name);
                 Expression e = sub.compile();
                 if (e.empty()) {
@@ -411,7 +425,10 @@ class ExpressionCompiler {
     SourceLocation loc_;
     const ExpressionScope& scope_;
     DiagnosticList& diags_;
+    static constexpr int kMaxNesting = 256;
+
     std::size_t pos_ = 0;
+    int depth_ = 0;
     bool failed_ = false;
     std::set<std::string> expanding_;
     Expression expr_;
