@@ -2,6 +2,7 @@
 // clear error with its location or in a bounded result.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <string>
 
 #include "process.hpp"
@@ -62,4 +63,31 @@ TEST(Regressions, DeeplyNestedBranchesAreDerivedAndDrawn) {
     EXPECT_NE(r.out.find("\"segments\": 2"), std::string::npos) << r.out.substr(0, 300);
     r = runGraftal("render -o " + (t.path() / "b.png").string() + " " + f.string());
     EXPECT_EQ(r.status, 0) << r.err;
+}
+
+TEST(Regressions, ADefineUsedTwiceInEachOfTwentyFiveLevelsIsCompiledOnce) {
+    // Each define uses the previous one twice: expanded in place, Z has 2^25 terms.
+    auto start = std::chrono::steady_clock::now();
+    auto r = runGraftal("derive " + regression("define-doubling.l"));
+    double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.out, "F(33554432)\n");
+    EXPECT_LT(seconds, 5);
+}
+
+TEST(Regressions, ADefineDoublingAParameterStopsAtAClearLimit) {
+    std::string text = "Lsystem: 1\n#define A x\n";
+    for (char c = 'B'; c <= 'Z'; ++c)
+        text += std::string("#define ") + c + " " + char(c - 1) + "+" + char(c - 1) + "\n";
+    text += "axiom: F(1)\nF(x) --> F(Z)\nendlsystem\n";
+    EXPECT_EQ(parseError(text),
+              "test.l:29:12: error: expression too long: expanding #define 'P' gives more than "
+              "100000 steps");
+    // Small chains still work, and a define that cannot be evaluated alone (1/0) is only an
+    // error where it is evaluated.
+    LSystem ls = graftal::testing::parse(
+        "Lsystem: 1\nderivation length: 1\n#define A x\n#define B A+A\n#define C B*B\n"
+        "#define BAD 1/0\naxiom: F(3)\nF(x) --> F(C)F(0 && BAD)\nendlsystem\n");
+    EXPECT_EQ(graftal::testing::derived(ls, 1), "F(36)F(0)");
 }
