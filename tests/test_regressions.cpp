@@ -1,9 +1,15 @@
 // Inputs that once crashed graftal, hung it or took memory without bound. Each must end in a
 // clear error with its location or in a bounded result.
+#include <cairo.h>
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstdint>
+#include <cstring>
+#include <functional>
 #include <string>
+
+#include <sys/wait.h>
 
 #include "process.hpp"
 #include "test_helpers.hpp"
@@ -18,6 +24,26 @@ namespace {
 
 std::string regression(const std::string& name) {
     return std::string(GRAFTAL_TESTS_DIR) + "/regressions/" + name;
+}
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// The red, green and blue of pixel (x, y) of a PNG file, or -1 when it cannot be read.
+int rgbAt(const std::string& path, int x, int y) {
+    cairo_surface_t* s = cairo_image_surface_create_from_png(path.c_str());
+    int v = -1;
+    if (cairo_surface_status(s) == CAIRO_STATUS_SUCCESS) {
+        cairo_surface_flush(s);
+        const unsigned char* row =
+            cairo_image_surface_get_data(s) + y * cairo_image_surface_get_stride(s);
+        std::uint32_t argb;
+        std::memcpy(&argb, row + 4 * x, 4);
+        v = static_cast<int>(argb & 0xffffff);
+    }
+    cairo_surface_destroy(s);
+    return v;
 }
 
 }  // namespace
@@ -69,11 +95,9 @@ TEST(Regressions, ADefineUsedTwiceInEachOfTwentyFiveLevelsIsCompiledOnce) {
     // Each define uses the previous one twice: expanded in place, Z has 2^25 terms.
     auto start = std::chrono::steady_clock::now();
     auto r = runGraftal("derive " + regression("define-doubling.l"));
-    double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     EXPECT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(r.out, "F(33554432)\n");
-    EXPECT_LT(seconds, 5);
+    EXPECT_LT(secondsSince(start), 5);
 }
 
 TEST(Regressions, ADefineDoublingAParameterStopsAtAClearLimit) {
@@ -90,4 +114,24 @@ TEST(Regressions, ADefineDoublingAParameterStopsAtAClearLimit) {
         "Lsystem: 1\nderivation length: 1\n#define A x\n#define B A+A\n#define C B*B\n"
         "#define BAD 1/0\naxiom: F(3)\nF(x) --> F(C)F(0 && BAD)\nendlsystem\n");
     EXPECT_EQ(graftal::testing::derived(ls, 1), "F(36)F(0)");
+}
+
+TEST(Regressions, AHugeWidthOnAZeroLengthSegmentFillsThePictureQuickly) {
+    // A dot of width 1e12: its round cap covers the picture, and drawing it is bounded.
+    TempDir t;
+    for (std::string how : {"", "--stream "}) {
+        auto png = (t.path() / "dot.png").string();
+        auto start = std::chrono::steady_clock::now();
+        auto r = runGraftal("render " + how + "-o " + png + " " + regression("huge-width-dot.l"));
+        EXPECT_EQ(r.status, 0) << how << r.err;
+        EXPECT_LT(secondsSince(start), 10) << how;
+        EXPECT_EQ(rgbAt(png, 0, 0), rgbAt(png, 400, 400)) << how << "the corner is inked too";
+        EXPECT_NE(rgbAt(png, 0, 0), 0xffffff) << how;
+    }
+    auto pdf = (t.path() / "dot.pdf").string();
+    auto start = std::chrono::steady_clock::now();
+    auto r = runGraftal("render -o " + pdf + " " + regression("huge-width-dot.l"));
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_LT(secondsSince(start), 10);
+    EXPECT_EQ(readFile(pdf).substr(0, 5), "%PDF-");
 }
