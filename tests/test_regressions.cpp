@@ -135,3 +135,15 @@ TEST(Regressions, AHugeWidthOnAZeroLengthSegmentFillsThePictureQuickly) {
     EXPECT_LT(secondsSince(start), 10);
     EXPECT_EQ(readFile(pdf).substr(0, 5), "%PDF-");
 }
+
+TEST(Regressions, AHugeSvgStrokeWidthIsClampedNotOverflowed) {
+    TempDir t;
+    auto f = t.write("wide.l", "axiom: !(1e30)F\n");
+    auto svg = (t.path() / "wide.svg").string();
+    auto r = runGraftal("render -o " + svg + " " + f.string());
+    EXPECT_EQ(r.status, 0) << r.err;
+    std::string text = readFile(svg);
+    auto at = text.find("stroke-width=\"");
+    ASSERT_NE(at, std::string::npos) << text;
+    EXPECT_EQ(text.substr(at, 20), "stroke-width=\"3200\" ") << "twice width plus height";
+}
