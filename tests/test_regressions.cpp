@@ -147,3 +147,17 @@ TEST(Regressions, AHugeSvgStrokeWidthIsClampedNotOverflowed) {
     ASSERT_NE(at, std::string::npos) << text;
     EXPECT_EQ(text.substr(at, 20), "stroke-width=\"3200\" ") << "twice width plus height";
 }
+
+TEST(Regressions, ATableCountAboveTheIntRangeIsNamedAsSuch) {
+    EXPECT_EQ(
+        parseError("table schedule: m 4e44\n").substr(0, 83),
+        "test.l:1:19: error: a table runs for a whole number of steps from 0 to 2147483647, ");
+    auto r = runGraftal("derive " + regression("schedule-count-too-large.l"));
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("schedule-count-too-large.l:8:22: error: a table runs for a whole "
+                         "number of steps from 0 to 2147483647"),
+              std::string::npos)
+        << r.err;
+    EXPECT_EQ(r.err.find("may omit its step count"), std::string::npos) << r.err;
+    EXPECT_EQ(r.out, "");
+}

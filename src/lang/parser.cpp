@@ -6,6 +6,7 @@
 #include <cctype>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 namespace graftal {
@@ -487,8 +488,12 @@ void Parser::parseSchedule(const SourceLine& line, std::size_t valueStart) {
             for (const auto& d : local.items()) diags_.add(d);
             if (ex.empty()) return;
             steps = ex.evaluate({});
-            if (steps < 0 || steps != std::floor(steps)) {
-                diags_.error(at(line, countCol), "a table runs for a whole number of steps >= 0");
+            if (!(steps >= 0 && steps <= std::numeric_limits<int>::max()) ||
+                steps != std::floor(steps)) {
+                diags_.error(at(line, countCol),
+                             "a table runs for a whole number of steps from 0 to 2147483647, "
+                             "not " +
+                                 formatNumber(steps));
                 return;
             }
             e.steps = static_cast<int>(steps);
