@@ -161,3 +161,10 @@ TEST(Regressions, ATableCountAboveTheIntRangeIsNamedAsSuch) {
     EXPECT_EQ(r.err.find("may omit its step count"), std::string::npos) << r.err;
     EXPECT_EQ(r.out, "");
 }
+
+TEST(Regressions, ASeedBeyondSixtyFourBitsIsAnError) {
+    std::string e = parseError("seed: 1e20\naxiom: F\n");
+    EXPECT_EQ(e.substr(0, 7), "test.l:") << e;
+    EXPECT_NE(e.find("seed must be a whole number from 0 to 2^64 - 1"), std::string::npos) << e;
+    EXPECT_EQ(parseError("seed: 18446744073709549568\naxiom: F\n"), "") << "the largest below";
+}

@@ -437,8 +437,10 @@ void Parser::parseDirective(const SourceLine& line, const std::string& kw, std::
         return;
     } else if (kw == "seed") {
         if (!constantValue(line, valueStart, v)) return;
-        if (v < 0 || v != std::floor(v)) {
-            diags_.error(loc, "seed must be a whole number >= 0");
+        // 2^64 is the first double above the largest uint64_t.
+        if (!(v >= 0 && v < 18446744073709551616.0) || v != std::floor(v)) {
+            diags_.error(loc,
+                         "seed must be a whole number from 0 to 2^64 - 1, not " + formatNumber(v));
             return;
         }
         ls_.seed = static_cast<std::uint64_t>(v);
