@@ -168,3 +168,14 @@ TEST(Regressions, ASeedBeyondSixtyFourBitsIsAnError) {
     EXPECT_NE(e.find("seed must be a whole number from 0 to 2^64 - 1"), std::string::npos) << e;
     EXPECT_EQ(parseError("seed: 18446744073709549568\naxiom: F\n"), "") << "the largest below";
 }
+
+TEST(Regressions, OutOfRangeColourIndicesAreClamped) {
+    LSystem ls = graftal::testing::parse(
+        "Lsystem: 1\naxiom: F;(-1)F;(70000)F,(2.7)F'(1e300)F\nendlsystem\n");
+    Scene s = interpret(ls, derive(ls, 0));
+    ASSERT_EQ(s.segments.size(), 5u);
+    EXPECT_EQ(s.segments[1].color, 0);
+    EXPECT_EQ(s.segments[2].color, 65535);
+    EXPECT_EQ(s.segments[3].color, 2);
+    EXPECT_EQ(s.segments[4].color, 65535);
+}
