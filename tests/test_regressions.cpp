@@ -179,3 +179,12 @@ TEST(Regressions, OutOfRangeColourIndicesAreClamped) {
     EXPECT_EQ(s.segments[3].color, 2);
     EXPECT_EQ(s.segments[4].color, 65535);
 }
+
+TEST(Regressions, ATinyOccupancyCellKeepsCellIndicesInRange) {
+    // 1e-300 cells: the cell index of x = 1 is 1e300, far beyond int64; clamped, the two
+    // points far apart still fall in different cells and the two at the origin share one.
+    LSystem ls = graftal::testing::parse(
+        "Lsystem: 1\nenvironment: occupancy cell 1e-300\n"
+        "axiom: ?E(9) ?E(9) f(1) ?E(9) [+(180) f(2) ?E(9)]\nendlsystem\n");
+    EXPECT_EQ(graftal::testing::derived(ls, 0), "?E(1)?E(1)f(1)?E(0)[+(180)f(2)?E(0)]");
+}

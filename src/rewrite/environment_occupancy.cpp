@@ -30,8 +30,14 @@ struct CellHash {
 
 // Turtle positions carry rounding noise (0.9999999999 for 1); without the nudge a point
 // that is meant to lie on a cell boundary would fall on either side of it.
+// Indices are clamped to +-2^62 (a tiny cell or a far position would overflow the cast, which
+// is undefined): cells beyond that, unreachable in practice, share the outermost index.
 std::int64_t cellIndex(double coordinate, double size) {
-    return static_cast<std::int64_t>(std::floor(coordinate / size + 1e-9));
+    constexpr double kLimit = 4611686018427387904.0;  // 2^62
+    const double c = std::floor(coordinate / size + 1e-9);
+    if (!(c > -kLimit)) return c < 0 ? -static_cast<std::int64_t>(kLimit) : 0;  // or nan
+    if (c >= kLimit) return static_cast<std::int64_t>(kLimit);
+    return static_cast<std::int64_t>(c);
 }
 
 Cell cellOf(const Vec3& p, double size) {
