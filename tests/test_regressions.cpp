@@ -188,3 +188,28 @@ TEST(Regressions, ATinyOccupancyCellKeepsCellIndicesInRange) {
         "axiom: ?E(9) ?E(9) f(1) ?E(9) [+(180) f(2) ?E(9)]\nendlsystem\n");
     EXPECT_EQ(graftal::testing::derived(ls, 0), "?E(1)?E(1)f(1)?E(0)[+(180)f(2)?E(0)]");
 }
+
+TEST(Regressions, OccupancyRadiusWithEveryModuleAtOnePointIsLinear) {
+    // 2^16 modules at the origin: each sees the 65535 others, without comparing every pair.
+    auto start = std::chrono::steady_clock::now();
+    auto r = runGraftal("derive -n 16 " + regression("occupancy-one-point.l"));
+    EXPECT_EQ(r.status, 0) << r.err;
+    std::string expected;
+    for (int i = 0; i < 65536; ++i) expected += "?E(65535)";
+    EXPECT_TRUE(r.out == expected + "\n") << r.out.substr(0, 100);
+    EXPECT_LT(secondsSince(start), 10);
+}
+
+TEST(Regressions, OccupancyRadiusCountsEachNeighbourOnceAcrossBuckets) {
+    // Points 0.3 apart on a line, radius 1: three neighbours on each side inside the line.
+    std::string axiom;
+    for (int i = 0; i < 12; ++i) axiom += "?E(9)f(0.3)";
+    LSystem ls = graftal::testing::parse(
+        "Lsystem: 1\nenvironment: occupancy radius 1\naxiom: " + axiom + "\nendlsystem\n");
+    std::string expected;
+    for (int i = 0; i < 12; ++i) {
+        int n = std::min(i, 3) + std::min(11 - i, 3);
+        expected += "?E(" + std::to_string(n) + ")f(0.3)";
+    }
+    EXPECT_EQ(graftal::testing::derived(ls, 0), expected);
+}
