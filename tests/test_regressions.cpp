@@ -213,3 +213,15 @@ TEST(Regressions, OccupancyRadiusCountsEachNeighbourOnceAcrossBuckets) {
     }
     EXPECT_EQ(graftal::testing::derived(ls, 0), expected);
 }
+
+TEST(Regressions, ATableCountThatFailsToEvaluateIsCollectedWithTheOtherErrors) {
+    try {
+        graftal::testing::parse(
+            "Lsystem: 1\ntable: T\ntable schedule: T 1/0\naxiom: F(\nendlsystem\n");
+        ADD_FAILURE() << "no error";
+    } catch (const Error& e) {
+        ASSERT_EQ(e.diagnostics().size(), 2u) << e.what();
+        EXPECT_EQ(e.diagnostics()[0].location.line, 3);
+        EXPECT_EQ(e.diagnostics()[1].location.line, 4);
+    }
+}

@@ -489,7 +489,12 @@ void Parser::parseSchedule(const SourceLine& line, std::size_t valueStart) {
                 compileExpression(trimView(t.substr(sp)), at(line, countCol), scope, local);
             for (const auto& d : local.items()) diags_.add(d);
             if (ex.empty()) return;
-            steps = ex.evaluate({});
+            try {
+                steps = ex.evaluate({});
+            } catch (const Error& err) {
+                for (const auto& d : err.diagnostics()) diags_.add(d);
+                return;
+            }
             if (!(steps >= 0 && steps <= std::numeric_limits<int>::max()) ||
                 steps != std::floor(steps)) {
                 diags_.error(at(line, countCol),
