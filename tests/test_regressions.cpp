@@ -225,3 +225,30 @@ TEST(Regressions, ATableCountThatFailsToEvaluateIsCollectedWithTheOtherErrors) {
         EXPECT_EQ(e.diagnostics()[1].location.line, 4);
     }
 }
+
+TEST(Regressions, GrowthPredictionStaysExactUpToAThousandDigitsThenEstimates) {
+    LSystem ls = graftal::testing::parse("Lsystem: 1\naxiom: F\nF --> FF\nendlsystem\n");
+    GrowthPrediction g = predictGrowth(ls, 3000);
+    ASSERT_TRUE(g.exact);
+    EXPECT_EQ(g.modules[3000].digits(), 904u) << "2^3000";
+    EXPECT_EQ(g.modules[64].toString(), "18446744073709551616");
+    auto start = std::chrono::steady_clock::now();
+    g = predictGrowth(ls, 1000000);
+    EXPECT_LT(secondsSince(start), 5);
+    EXPECT_FALSE(g.exact);
+    EXPECT_TRUE(g.expected);
+    ASSERT_EQ(g.expectedModules.size(), 1000001u);
+    EXPECT_EQ(g.expectedModules[64], 18446744073709551616.0);
+}
+
+TEST(Regressions, AMillionDoublingsAreRefusedQuickly) {
+    auto start = std::chrono::steady_clock::now();
+    auto r = runGraftal("derive " + regression("million-doublings.l"));
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("more than the memory limit"), std::string::npos) << r.err;
+    EXPECT_EQ(r.out, "");
+    r = runGraftal("stats --predict " + regression("million-doublings.l"));
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("\"prediction\": \"expected\""), std::string::npos);
+    EXPECT_LT(secondsSince(start), 10);
+}
