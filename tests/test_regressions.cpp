@@ -252,3 +252,19 @@ TEST(Regressions, AMillionDoublingsAreRefusedQuickly) {
     EXPECT_NE(r.out.find("\"prediction\": \"expected\""), std::string::npos);
     EXPECT_LT(secondsSince(start), 10);
 }
+
+TEST(Regressions, SubtreeSummariesStayWithinTheMemoryLimit) {
+    // 150,000 steps of F --> F: the summaries' table alone would take over a gigabyte.
+    // Under a 512 MB address-space limit the render must still succeed.
+    TempDir t;
+    auto png = (t.path() / "long.png").string();
+    std::string cmd = "ulimit -v 524288; " + std::string(GRAFTAL_EXE) + " render -o " + png +
+                      " --memory-limit 64M " + regression("long-identity-derivation.l") +
+                      " > /dev/null 2>&1";
+    int raw = std::system(("sh -c '" + cmd + "'").c_str());
+    EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 0) << raw;
+    EXPECT_EQ(readFile(png).substr(1, 3), "PNG");
+    EXPECT_FALSE(streamedPictureIsSummarised(
+        graftal::testing::parse(readFile(regression("long-identity-derivation.l"))), 150000,
+        std::size_t(64) << 20));
+}
