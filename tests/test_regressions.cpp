@@ -268,3 +268,15 @@ TEST(Regressions, SubtreeSummariesStayWithinTheMemoryLimit) {
         graftal::testing::parse(readFile(regression("long-identity-derivation.l"))), 150000,
         std::size_t(64) << 20));
 }
+
+TEST(Regressions, StreamingKeepsEveryParameterOfAModule) {
+    std::string args;
+    for (int i = 0; i < 70; ++i) args += (i ? "," : "") + std::to_string(i);
+    TempDir t;
+    auto f = t.write("wide.l", "Lsystem: 1\nderivation length: 1\naxiom: A\nA --> B(" + args +
+                                   ")\nendlsystem\n");
+    auto held = runGraftal("derive " + f.string());
+    auto streamed = runGraftal("derive --stream " + f.string());
+    EXPECT_EQ(held.out, "B(" + args + ")\n");
+    EXPECT_EQ(streamed.out, held.out) << streamed.err;
+}
