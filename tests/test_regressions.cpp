@@ -280,3 +280,15 @@ TEST(Regressions, StreamingKeepsEveryParameterOfAModule) {
     EXPECT_EQ(held.out, "B(" + args + ")\n");
     EXPECT_EQ(streamed.out, held.out) << streamed.err;
 }
+
+TEST(Regressions, ADerivationOwnsItsLSystem) {
+    Derivation d(parseLSystem("Lsystem: 1\naxiom: b\na --> ab\nb --> a\nendlsystem\n"));
+    d.run(5);
+    EXPECT_EQ(d.current().toString(parseLSystem("Lsystem: 1\naxiom: b\nendlsystem\n").symbols),
+              "abaababa");
+    LSystem ls = parseLSystem("Lsystem: 1\naxiom: b\na --> ab\nb --> a\nendlsystem\n");
+    Derivation e(ls);
+    ls.productions.clear();
+    e.run(2);
+    EXPECT_EQ(e.current().toString(ls.symbols), "ab") << "a copy: later changes do not leak in";
+}
