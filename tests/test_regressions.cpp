@@ -292,3 +292,32 @@ TEST(Regressions, ADerivationOwnsItsLSystem) {
     e.run(2);
     EXPECT_EQ(e.current().toString(ls.symbols), "ab") << "a copy: later changes do not leak in";
 }
+
+TEST(Regressions, APopOnAnEmptyTurtleStackIsAnError) {
+    // Files cannot say it (the parser balances brackets), but a program can build one.
+    auto expectStackError = [](const std::function<void()>& f, const char* what) {
+        try {
+            f();
+            ADD_FAILURE() << what << ": no error";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("pops an empty turtle stack"), std::string::npos)
+                << what << ": " << e.what();
+        }
+    };
+    LSystem ls = graftal::testing::parse("Lsystem: 1\naxiom: F\nendlsystem\n");
+    ls.axiom = ModuleString();
+    ls.axiom.push('F');
+    ls.axiom.push(']');
+    ls.axiom.push('F');
+    expectStackError([&] { interpret(ls, derive(ls, 0)); }, "interpret");
+    expectStackError([&] { interpretStreamed(ls, 0); }, "interpretStreamed");
+    expectStackError([&] { measureStreamed(ls, 0); }, "measureStreamed");
+    expectStackError([&] { measureModules(ls, ls.axiom); }, "measureModules");
+
+    // A homomorphism whose successor (changed after parsing) closes a branch never opened.
+    LSystem h =
+        graftal::testing::parse("Lsystem: 1\naxiom: FA\nhomomorphism\nA --> F\nendlsystem\n");
+    h.homomorphism[0].successor.push_back(h.homomorphism[0].successor[0]);
+    h.homomorphism[0].successor.back().symbol = ']';
+    expectStackError([&] { interpret(h, applyHomomorphism(h, derive(h, 0))); }, "homomorphism");
+}
