@@ -26,7 +26,9 @@ struct DerivationOptions {
 
 class Derivation {
   public:
-    Derivation(const LSystem& lsystem, DerivationOptions options = {});
+    // The derivation keeps its own copy of the L-system: `Derivation d(parseLSystem(text))`
+    // is safe, and so is changing the original afterwards.
+    explicit Derivation(LSystem lsystem, DerivationOptions options = {});
     ~Derivation();
     Derivation(const Derivation&) = delete;
     Derivation& operator=(const Derivation&) = delete;
@@ -45,7 +47,7 @@ class Derivation {
     void decompose(int stepNumber);
     void answerQueries(int stepNumber);
 
-    const LSystem& lsystem_;
+    LSystem lsystem_;
     DerivationOptions options_;
     std::unique_ptr<ModuleString> current_, next_;
     std::unique_ptr<class RewritingEngine> rules_, decomposition_;

@@ -23,6 +23,7 @@ class BigCount {
     friend bool operator<(const BigCount& a, const BigCount& b);
 
     std::string toString() const;  // exact decimal
+    std::size_t digits() const;    // decimal digits of toString()
     double toDouble() const;
     std::optional<std::uint64_t> toUint64() const;
 
@@ -39,6 +40,10 @@ struct GrowthPrediction {
     // Per symbol counts at the last step (exact only), indexed by symbol id.
     std::vector<BigCount> symbolsAtEnd;
 };
+
+// Exact counts stop at this many decimal digits: past it (a million doublings would make
+// numbers of 300,000 digits at every step) the prediction continues as expected values.
+constexpr std::size_t kMaxExactDigits = 1000;
 
 // Predicts module counts for steps 0..steps. Exact for deterministic context-free
 // L-systems (tables follow their schedule); expected values when productions are chosen

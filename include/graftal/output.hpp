@@ -46,6 +46,10 @@ double defaultLineWidth(const Scene& scene, const RenderOptions& o);
 double defaultLineWidth(double ink, bool anySegments, const Bounds& bounds, const RenderOptions& o);
 // A segment's length times its width relative to `baseWidth`, in model units.
 double inkLength(const Segment& s, float baseWidth);
+// A stroke width in pixels as the 2D writers draw it: wider than the picture it only covers
+// the picture, so it is capped at twice the picture's width plus height (a round cap of
+// 1e12 pixels would otherwise take the rasteriser minutes and gigabytes).
+double clampedStrokeWidth(double pixels, const RenderOptions& o);
 
 // A 2D PNG drawn while the geometry streams in, never holding it: for strings too large
 // to keep. The bounds, ink total and base width come from a first, measuring pass; the

@@ -61,8 +61,10 @@ Scene interpretStreamed(const LSystem& lsystem, int steps, const DerivationOptio
 
 // True when renderStreamedPng draws this derivation from subtree summaries: a picture with
 // far more segments than pixels, whose subtrees smaller than a pixel are drawn as one
-// stroke each, so that its time grows with the image rather than with the string.
-bool streamedPictureIsSummarised(const LSystem& lsystem, int steps);
+// stroke each, so that its time grows with the image rather than with the string. The
+// summaries' table must fit in half of `memoryLimit` bytes.
+bool streamedPictureIsSummarised(const LSystem& lsystem, int steps,
+                                 std::size_t memoryLimit = std::size_t(2) << 30);
 
 // A 2D PNG of the derivation drawn while streaming (two passes: measure, then draw);
 // memory stays proportional to the derivation depth and the image.

@@ -127,7 +127,7 @@ int runRender(const InputOptions& in, const RenderCommandOptions& out) {
         // A 2D PNG can be drawn while the derivation streams; everything else needs the scene.
         Loaded l = loadInput(in);
         bool png2D = *kind == OutputKind::Picture && imageFormatFor(out.output) == ImageFormat::Png;
-        bool pixelBound = png2D && streamedPictureIsSummarised(l.lsystem, l.steps);
+        bool pixelBound = png2D && streamedPictureIsSummarised(l.lsystem, l.steps, in.memoryLimit);
         if (chooseStreaming(l, in, png2D, true, pixelBound)) {
             RenderOptions render = out.render;
             double fill = std::clamp(l.lsystem.view.scaleFactor / 100.0, 0.01, 1.0);

@@ -5,6 +5,8 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <map>
+#include <memory>
 #include <set>
 
 namespace graftal {
@@ -95,6 +97,12 @@ class ExpressionCompiler {
     void fail(std::size_t offset, const std::string& msg) {
         if (!failed_) diags_.error(at(offset), msg);
         failed_ = true;
+    }
+
+    // A limit on nesting or size: reported as is, even from inside a #define.
+    void limit(std::size_t offset, const std::string& msg) {
+        if (!failed_) limitMessage_ = msg;
+        fail(offset, msg);
     }
 
     void skipSpace() {
@@ -204,6 +212,19 @@ class ExpressionCompiler {
     }
 
     void parseUnary() {
+        // Every nesting (parentheses, arguments, unary signs, powers, #define) passes here;
+        // bounding it keeps a hostile file from overflowing the stack.
+        if (depth_ >= kMaxNesting) {
+            limit(pos_,
+                  "expression nested more than " + std::to_string(kMaxNesting) + " levels deep");
+            return;
+        }
+        ++depth_;
+        parseUnaryBelowLimit();
+        --depth_;
+    }
+
+    void parseUnaryBelowLimit() {
         if (accept("-")) {
             parseUnary();
             emit(Expression::Op::Neg);
@@ -304,25 +325,68 @@ class ExpressionCompiler {
                     fail(start, "#define '" + name + "' refers to itself");
                     return;
                 }
-                // A constant is compiled in place, as the C preprocessor would expand it,
-                // but parenthesised so that `#define N 1+2` gives 2*N == 6.
-                DiagnosticList inner;
-                ExpressionCompiler sub(it->second, at(start), scope_, inner);
-                sub.expanding_ = expanding_;
-                sub.expanding_.insert(name);
-                Expression e = sub.compile();
-                if (e.empty()) {
-                    fail(start,
-                         "#define '" + name + "' is not a valid expression: '" + it->second + "'");
+                const CompiledDefine* d = compileDefine(name, it->second, start);
+                if (!d) return;
+                if (d->folded) {
+                    emitConst(d->value);
                     return;
                 }
-                inlineProgram(e);
+                if (expr_.code_.size() + d->program.code_.size() > kMaxProgram) {
+                    limit(start, "expression too long: expanding #define '" + name +
+                                     "' gives more than " + std::to_string(kMaxProgram) + " steps");
+                    return;
+                }
+                inlineProgram(d->program);
                 return;
             }
         }
         fail(start, "unknown name '" + name + "'" +
                         (scope_.variables.empty() ? std::string()
                                                   : " (not a parameter of this production)"));
+    }
+
+    // A #define is compiled once per expression, however often it is used: a chain of
+    // defines each using the previous twice would otherwise take 2^n compilations.
+    struct CompiledDefine {
+        Expression program;
+        bool folded = false;  // no parameter, no ran(): `value` stands for the program
+        double value = 0;
+    };
+
+    const CompiledDefine* compileDefine(const std::string& name, const std::string& body,
+                                        std::size_t start) {
+        auto cached = defines_->find(name);
+        if (cached != defines_->end()) return &cached->second;
+        // Compiled as the C preprocessor would expand it, but parenthesised so that
+        // `#define N 1+2` gives 2*N == 6.
+        DiagnosticList inner;
+        ExpressionCompiler sub(body, at(start), scope_, inner);
+        sub.expanding_ = expanding_;
+        sub.expanding_.insert(name);
+        sub.depth_ = depth_;
+        sub.defines_ = defines_;
+        CompiledDefine d;
+        d.program = sub.compile();
+        if (!sub.limitMessage_.empty()) {
+            // A limit met inside the define is the error to show, at its use here.
+            limit(start, sub.limitMessage_);
+            return nullptr;
+        }
+        if (d.program.empty()) {
+            fail(start, "#define '" + name + "' is not a valid expression: '" + body + "'");
+            return nullptr;
+        }
+        bool usesVariables = false;
+        for (const auto& in : d.program.code_) usesVariables |= in.op == Expression::Op::Var;
+        if (!usesVariables && !d.program.usesRandom_) {
+            try {
+                d.value = d.program.evaluate({});
+                d.folded = true;
+            } catch (const Error&) {
+                // 1/0 and the like stay as code: they fail only where they are evaluated.
+            }
+        }
+        return &defines_->emplace(name, std::move(d)).first->second;
     }
 
     void inlineProgram(const Expression& e) {
@@ -411,9 +475,16 @@ class ExpressionCompiler {
     SourceLocation loc_;
     const ExpressionScope& scope_;
     DiagnosticList& diags_;
+    static constexpr int kMaxNesting = 256;
+    static constexpr std::size_t kMaxProgram = 100000;
+
     std::size_t pos_ = 0;
+    int depth_ = 0;
     bool failed_ = false;
+    std::string limitMessage_;
     std::set<std::string> expanding_;
+    std::shared_ptr<std::map<std::string, CompiledDefine>> defines_ =
+        std::make_shared<std::map<std::string, CompiledDefine>>();
     Expression expr_;
 };
 

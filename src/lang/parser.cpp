@@ -6,6 +6,7 @@
 #include <cctype>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 namespace graftal {
@@ -436,8 +437,10 @@ void Parser::parseDirective(const SourceLine& line, const std::string& kw, std::
         return;
     } else if (kw == "seed") {
         if (!constantValue(line, valueStart, v)) return;
-        if (v < 0 || v != std::floor(v)) {
-            diags_.error(loc, "seed must be a whole number >= 0");
+        // 2^64 is the first double above the largest uint64_t.
+        if (!(v >= 0 && v < 18446744073709551616.0) || v != std::floor(v)) {
+            diags_.error(loc,
+                         "seed must be a whole number from 0 to 2^64 - 1, not " + formatNumber(v));
             return;
         }
         ls_.seed = static_cast<std::uint64_t>(v);
@@ -486,9 +489,18 @@ void Parser::parseSchedule(const SourceLine& line, std::size_t valueStart) {
                 compileExpression(trimView(t.substr(sp)), at(line, countCol), scope, local);
             for (const auto& d : local.items()) diags_.add(d);
             if (ex.empty()) return;
-            steps = ex.evaluate({});
-            if (steps < 0 || steps != std::floor(steps)) {
-                diags_.error(at(line, countCol), "a table runs for a whole number of steps >= 0");
+            try {
+                steps = ex.evaluate({});
+            } catch (const Error& err) {
+                for (const auto& d : err.diagnostics()) diags_.add(d);
+                return;
+            }
+            if (!(steps >= 0 && steps <= std::numeric_limits<int>::max()) ||
+                steps != std::floor(steps)) {
+                diags_.error(at(line, countCol),
+                             "a table runs for a whole number of steps from 0 to 2147483647, "
+                             "not " +
+                                 formatNumber(steps));
                 return;
             }
             e.steps = static_cast<int>(steps);

@@ -33,10 +33,11 @@ bool Parser::parsePatterns(const SourceLine& line, std::size_t from, std::size_t
             for (char c : name)
                 ok = ok && (std::isalnum(static_cast<unsigned char>(c)) || c == '_');
             if (!ok) {
-                diags_.error(
-                    src_.at(line.number, a.column + static_cast<int>(a.text.find(name[0]))),
-                    std::string("a ") + what + " names its parameters (e.g. A(x,y)); '" +
-                        std::string(name) + "' is not a name");
+                // A formal made only of blanks (even \v or \f) has no first character.
+                std::size_t offset = name.empty() ? 0 : a.text.find(name[0]);
+                diags_.error(src_.at(line.number, a.column + static_cast<int>(offset)),
+                             std::string("a ") + what + " names its parameters (e.g. A(x,y)); '" +
+                                 std::string(name) + "' is not a name");
                 return false;
             }
             if (std::find(formals.begin(), formals.end(), name) != formals.end()) {

@@ -105,7 +105,7 @@ void strokeSegments(cairo_t* cr, const Scene& scene, const RenderOptions& o,
             runColor = color;
             runWidth = seg.width;
             setSource(cr, color);
-            cairo_set_line_width(cr, lineWidth * seg.width);
+            cairo_set_line_width(cr, clampedStrokeWidth(lineWidth * seg.width, o));
         }
         if (inPath == 0 || ax != lastX || ay != lastY) cairo_move_to(cr, ax, ay);
         cairo_line_to(cr, bx, by);

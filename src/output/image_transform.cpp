@@ -75,6 +75,11 @@ double inkLength(const Segment& s, float baseWidth) {
     return std::isfinite(len) ? len * w : 0;
 }
 
+double clampedStrokeWidth(double pixels, const RenderOptions& o) {
+    const double limit = 2.0 * (std::max(o.width, 1) + std::max(o.height, 1));
+    return pixels < limit ? pixels : limit;
+}
+
 double defaultLineWidth(const Scene& scene, const RenderOptions& o) {
     double ink = 0;
     for (const Segment& s : scene.segments) ink += inkLength(s, scene.baseWidth);

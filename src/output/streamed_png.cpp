@@ -82,7 +82,7 @@ void StreamedPng::segment(const Segment& s) {
         m.runColor = color;
         m.runWidth = s.width;
         cairo_set_source_rgb(m.cr, color.r, color.g, color.b);
-        cairo_set_line_width(m.cr, m.lineWidth * s.width);
+        cairo_set_line_width(m.cr, clampedStrokeWidth(m.lineWidth * s.width, m.options));
     }
     if (m.inPath == 0 || ax != m.lastX || ay != m.lastY) cairo_move_to(m.cr, ax, ay);
     cairo_line_to(m.cr, bx, by);

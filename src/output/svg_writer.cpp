@@ -45,7 +45,7 @@ bool toFixed(const ImageTransform& t, const Vec3& p, Fixed& out) {
     return true;
 }
 
-void appendInt(std::string& s, std::int64_t v) {
+void appendInt(std::string& s, std::uint64_t v) {
     char buf[24];
     auto r = std::to_chars(buf, buf + sizeof buf, v);
     s.append(buf, r.ptr);
@@ -53,17 +53,19 @@ void appendInt(std::string& s, std::int64_t v) {
 
 // Writes v / 10^decimals with trailing zeros (and a bare point) dropped.
 void appendScaled(std::string& s, std::int64_t v, int decimals) {
-    std::int64_t unit = 1;
+    std::uint64_t unit = 1;
     for (int i = 0; i < decimals; ++i) unit *= 10;
+    // The magnitude in unsigned arithmetic: -INT64_MIN does not fit an int64_t.
+    std::uint64_t m = static_cast<std::uint64_t>(v);
     if (v < 0) {
         s += '-';
-        v = -v;
+        m = 0 - m;
     }
-    appendInt(s, v / unit);
-    std::int64_t frac = v % unit;
+    appendInt(s, m / unit);
+    std::uint64_t frac = m % unit;
     if (frac == 0) return;
     s += '.';
-    for (std::int64_t d = unit / 10; d > 0 && frac > 0; d /= 10) {
+    for (std::uint64_t d = unit / 10; d > 0 && frac > 0; d /= 10) {
         s += static_cast<char>('0' + frac / d);
         frac %= d;
     }
@@ -182,7 +184,7 @@ void writeSegments(const Scene& scene, const RenderOptions& o, const ImageTransf
             s += "<path stroke=\"";
             s += pathColor;
             s += "\" stroke-width=\"";
-            appendScaled(s, std::llround(lineWidth * seg.width * 1000), 3);
+            appendScaled(s, std::llround(clampedStrokeWidth(lineWidth * seg.width, o) * 1000), 3);
             s += "\" d=\"";
             pathOpen = true;
             subpathOpen = false;

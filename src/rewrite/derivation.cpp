@@ -48,25 +48,25 @@ void rewriteRecursively(RewritingEngine& engine, ModuleString& s, int depth, int
 
 }  // namespace
 
-Derivation::Derivation(const LSystem& lsystem, DerivationOptions options)
-    : lsystem_(lsystem),
+Derivation::Derivation(LSystem lsystem, DerivationOptions options)
+    : lsystem_(std::move(lsystem)),
       options_(options),
-      current_(std::make_unique<ModuleString>(lsystem.axiom)),
+      current_(std::make_unique<ModuleString>(lsystem_.axiom)),
       next_(std::make_unique<ModuleString>()) {
-    std::uint64_t seed = options.seed.value_or(lsystem.seed);
+    std::uint64_t seed = options.seed.value_or(lsystem_.seed);
     unsigned threads = options.threads ? options.threads : defaultThreadCount();
-    rules_ = std::make_unique<RewritingEngine>(lsystem, lsystem.productions, seed, threads);
-    if (!lsystem.decomposition.empty())
+    rules_ = std::make_unique<RewritingEngine>(lsystem_, lsystem_.productions, seed, threads);
+    if (!lsystem_.decomposition.empty())
         decomposition_ =
-            std::make_unique<RewritingEngine>(lsystem, lsystem.decomposition, seed, threads);
+            std::make_unique<RewritingEngine>(lsystem_, lsystem_.decomposition, seed, threads);
     if (rules_->parametric() && !current_->hasParameters()) {
         // Parametric strings always carry offsets, so every module reads the same way.
         current_->rawParamStart().assign(current_->size() + 1, 0);
     }
-    queries_ = usesQueries(lsystem);
+    queries_ = usesQueries(lsystem_);
     environment_ = options.environment;
     if (!environment_) {
-        ownedEnvironment_ = makeEnvironment(lsystem);
+        ownedEnvironment_ = makeEnvironment(lsystem_);
         environment_ = ownedEnvironment_.get();
     }
     afterStep(0);

@@ -1,8 +1,10 @@
 // The `occupancy` and `light` environments: every ?E occupies the point where the turtle
 // reaches it, and learns how many others share its neighbourhood, so that crowded apices
 // can stop. One hashed grid per step: O(n) for n modules, independent of thread count.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <optional>
 #include <unordered_map>
 
@@ -30,8 +32,14 @@ struct CellHash {
 
 // Turtle positions carry rounding noise (0.9999999999 for 1); without the nudge a point
 // that is meant to lie on a cell boundary would fall on either side of it.
+// Indices are clamped to +-2^62 (a tiny cell or a far position would overflow the cast, which
+// is undefined): cells beyond that, unreachable in practice, share the outermost index.
 std::int64_t cellIndex(double coordinate, double size) {
-    return static_cast<std::int64_t>(std::floor(coordinate / size + 1e-9));
+    constexpr double kLimit = 4611686018427387904.0;  // 2^62
+    const double c = std::floor(coordinate / size + 1e-9);
+    if (!(c > -kLimit)) return c < 0 ? -static_cast<std::int64_t>(kLimit) : 0;  // or nan
+    if (c >= kLimit) return static_cast<std::int64_t>(kLimit);
+    return static_cast<std::int64_t>(c);
 }
 
 Cell cellOf(const Vec3& p, double size) {
@@ -74,33 +82,59 @@ class OccupancyEnvironment : public Environment {
         return counts;
     }
 
-    // Buckets of side `radius`: every neighbour within the radius is in one of the 27
-    // buckets around a module's own.
+    // Buckets of side radius/2, so that a bucket's diagonal is shorter than the radius: the
+    // modules sharing a bucket are all neighbours and count as a whole, and so does every
+    // bucket wholly within the radius. Only the buckets the radius sphere cuts are compared
+    // module by module; many modules at one point (a common case: ?E(x) --> ?E(x)?E(x))
+    // stay O(n) where comparing every pair was O(n^2).
     std::vector<std::size_t> countWithinRadius(std::span<CommunicationRequest> requests) const {
+        const double side = radius_ / 2;
         std::unordered_map<Cell, std::vector<std::uint32_t>, CellHash> buckets;
         buckets.reserve(requests.size());
         std::vector<Cell> cells;
         cells.reserve(requests.size());
         for (std::size_t i = 0; i < requests.size(); ++i) {
-            cells.push_back(cellOf(requests[i].frame.position, radius_));
+            cells.push_back(cellOf(requests[i].frame.position, side));
             buckets[cells.back()].push_back(static_cast<std::uint32_t>(i));
         }
         // Compared squared, with the same tolerance as the cells: points exactly one radius
         // apart count as neighbours.
-        double limit = radius_ * radius_ * (1 + 1e-9);
+        const double limit = radius_ * radius_ * (1 + 1e-9);
+        // Bucket bounds are nudged by the cells' 1e-9 tolerance; a margin keeps the whole
+        // and none tests conservative, so they agree with the module-by-module test.
+        const double margin = side * 1e-6;
         std::vector<std::size_t> counts(requests.size(), 0);
-        for (std::size_t i = 0; i < requests.size(); ++i) {
-            const Vec3& p = requests[i].frame.position;
-            for (std::int64_t dx = -1; dx <= 1; ++dx)
-                for (std::int64_t dy = -1; dy <= 1; ++dy)
-                    for (std::int64_t dz = -1; dz <= 1; ++dz) {
-                        auto it = buckets.find({cells[i].x + dx, cells[i].y + dy, cells[i].z + dz});
+        for (const auto& [cell, members] : buckets) {
+            for (std::int64_t dx = -2; dx <= 2; ++dx)
+                for (std::int64_t dy = -2; dy <= 2; ++dy)
+                    for (std::int64_t dz = -2; dz <= 2; ++dz) {
+                        auto it = buckets.find({cell.x + dx, cell.y + dy, cell.z + dz});
                         if (it == buckets.end()) continue;
-                        for (std::uint32_t j : it->second) {
-                            if (j == i) continue;
-                            const Vec3& q = requests[j].frame.position;
-                            double ex = p.x - q.x, ey = p.y - q.y, ez = p.z - q.z;
-                            if (ex * ex + ey * ey + ez * ez <= limit) ++counts[i];
+                        const auto& others = it->second;
+                        double nearest = 0, farthest = 0;
+                        for (std::int64_t d : {dx, dy, dz}) {
+                            const double gap = std::max(
+                                0.0, (static_cast<double>(std::abs(d)) - 1) * side - margin);
+                            const double span =
+                                (static_cast<double>(std::abs(d)) + 1) * side + margin;
+                            nearest += gap * gap;
+                            farthest += span * span;
+                        }
+                        if (nearest > limit) continue;
+                        const bool self = dx == 0 && dy == 0 && dz == 0;
+                        if (self || farthest <= radius_ * radius_) {
+                            // All neighbours (within a bucket: side * sqrt(3) < radius).
+                            for (std::uint32_t i : members)
+                                counts[i] += others.size() - (self ? 1 : 0);
+                            continue;
+                        }
+                        for (std::uint32_t i : members) {
+                            const Vec3& p = requests[i].frame.position;
+                            for (std::uint32_t j : others) {
+                                const Vec3& q = requests[j].frame.position;
+                                double ex = p.x - q.x, ey = p.y - q.y, ez = p.z - q.z;
+                                if (ex * ex + ey * ey + ez * ez <= limit) ++counts[i];
+                            }
                         }
                     }
         }

@@ -68,6 +68,11 @@ std::string BigCount::toString() const {
     return s;
 }
 
+std::size_t BigCount::digits() const {
+    if (limbs_.empty()) return 1;
+    return (limbs_.size() - 1) * 9 + std::to_string(limbs_.back()).size();
+}
+
 double BigCount::toDouble() const {
     double v = 0;
     for (std::size_t i = limbs_.size(); i-- > 0;) v = v * kBase + limbs_[i];
@@ -149,22 +154,22 @@ GrowthPrediction predictGrowth(const LSystem& ls, int steps) {
         BigCount sum;
         double e = 0;
         for (std::size_t s = 0; s < n; ++s) {
-            sum += exact[s];
+            if (!stochastic) sum += exact[s];
             e += expect[s];
         }
-        g.modules.push_back(sum);
+        if (!stochastic) g.modules.push_back(sum);
         g.expectedModules.push_back(e);
     };
     total();
     for (int step = 1; step <= steps; ++step) {
         const auto& table = choices[static_cast<std::size_t>(ls.tableForStep(step))];
-        std::vector<BigCount> nextExact(n);
+        std::vector<BigCount> nextExact(stochastic ? 0 : n);
         std::vector<double> nextExpect(n, 0);
         for (std::size_t s = 0; s < n; ++s) {
             if (expect[s] == 0) continue;
             const auto& list = table[s];
             if (list.empty()) {  // identity
-                nextExact[s] += exact[s];
+                if (!stochastic) nextExact[s] += exact[s];
                 nextExpect[s] += expect[s];
                 continue;
             }
@@ -187,6 +192,13 @@ GrowthPrediction predictGrowth(const LSystem& ls, int steps) {
         exact = std::move(nextExact);
         expect = std::move(nextExpect);
         total();
+        if (!stochastic && g.modules.back().digits() > kMaxExactDigits) {
+            // Each further step would cost time and memory in proportion to the digits,
+            // quadratic over a long derivation: go on with the expected values alone.
+            stochastic = true;
+            exact.clear();
+            g.modules.clear();
+        }
     }
     g.exact = !stochastic;
     g.expected = stochastic;

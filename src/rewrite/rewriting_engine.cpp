@@ -488,9 +488,11 @@ void RewritingEngine::expandOne(const ModuleString& s, std::size_t i, std::uint6
     }
     matches(p, s, i, scratchSlots_.data());
     Draws draws{this, static_cast<std::uint64_t>(stepNumber), position, 1ull << 32};
-    double args[64];
     for (const auto& m : p.successor) {
-        std::size_t n = std::min<std::size_t>(m.args.size(), 64);
+        // As many values as the module has: a module may carry any number of parameters.
+        std::size_t n = m.args.size();
+        if (scratchArgs_.size() < n) scratchArgs_.resize(n);
+        double* args = scratchArgs_.data();
         for (std::size_t a = 0; a < n; ++a) {
             try {
                 args[a] = evaluate(m.args[a], scratchSlots_.data(), draws);

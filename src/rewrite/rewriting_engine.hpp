@@ -126,7 +126,7 @@ class RewritingEngine {
     std::unique_ptr<ContextRewriter> context_;
 
     BracketIndex brackets_;
-    std::vector<double> scratchSlots_, scratchWeights_;
+    std::vector<double> scratchSlots_, scratchWeights_, scratchArgs_;
     std::vector<std::int32_t, UninitializedAllocator<std::int32_t>> choice_;
 };
 

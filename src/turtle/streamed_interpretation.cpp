@@ -95,14 +95,15 @@ namespace {
 constexpr double kSummariseAbove = 2e7;
 }  // namespace
 
-bool streamedPictureIsSummarised(const LSystem& ls, int steps) {
-    SubtreeSummaries sums(ls, steps);
+bool streamedPictureIsSummarised(const LSystem& ls, int steps, std::size_t memoryLimit) {
+    SubtreeSummaries sums(ls, steps, memoryLimit);
     return sums.available() && sums.segments() > kSummariseAbove;
 }
 
 void renderStreamedPng(const LSystem& ls, int steps, const DerivationOptions& options,
                        const RenderOptions& render, const std::filesystem::path& path) {
-    if (SubtreeSummaries sums(ls, steps); sums.available() && sums.segments() > kSummariseAbove) {
+    if (SubtreeSummaries sums(ls, steps, options.memoryLimit);
+        sums.available() && sums.segments() > kSummariseAbove) {
         renderSummarisedPng(ls, sums, render, path);
         return;
     }

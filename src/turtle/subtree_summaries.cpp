@@ -43,14 +43,17 @@ void turnBy(double& c, double& s, double c2, double s2) {
 
 }  // namespace
 
-SubtreeSummaries::SubtreeSummaries(const LSystem& ls, int steps) : ls_(ls) {
+SubtreeSummaries::SubtreeSummaries(const LSystem& ls, int steps, std::size_t memoryLimit)
+    : ls_(ls) {
     steps_ = steps < 0 ? ls.derivationLength : steps;
     symbolCount_ = ls.symbols.size();
     if (!streamingObstacle(ls).empty() || hasRandomOrParameters(ls) || drawsPolygons(ls) ||
         (ls.view.tropism && ls.view.elasticity != 0))
         return;
     // One summary per symbol and string: keep the table small.
-    if (static_cast<double>(symbolCount_) * (steps_ + 1) > 2e7) return;
+    const double entries = static_cast<double>(symbolCount_) * (steps_ + 1);
+    if (entries > 2e7 || entries * sizeof(SubtreeMotion) > static_cast<double>(memoryLimit) / 2)
+        return;
     axiom_.assign(ls.axiom.symbols().begin(), ls.axiom.symbols().end());
 
     std::size_t tables = std::max<std::size_t>(1, ls.tableNames.size());

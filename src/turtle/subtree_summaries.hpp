@@ -36,8 +36,11 @@ struct SubtreeMotion {
 class SubtreeSummaries {
   public:
     // Summaries of the derivation of `lsystem` in `steps` steps. Unavailable (available()
-    // false) for parameters, random choices, conditions, context, tropism or polygons.
-    SubtreeSummaries(const LSystem& lsystem, int steps);
+    // false) for parameters, random choices, conditions, context, tropism or polygons, and
+    // when the table (symbols x (steps + 1) motions) would take more than half of
+    // `memoryLimit` bytes.
+    SubtreeSummaries(const LSystem& lsystem, int steps,
+                     std::size_t memoryLimit = std::size_t(2) << 30);
 
     bool available() const { return available_; }
     int steps() const { return steps_; }

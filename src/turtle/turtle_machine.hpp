@@ -338,11 +338,11 @@ class TurtleMachine {
                 break;
             case TurtleOp::ColorNext:
                 state_.color = args.empty() ? static_cast<std::uint16_t>(state_.color + 1)
-                                            : static_cast<std::uint16_t>(args[0]);
+                                            : colorIndex(args[0]);
                 break;
             case TurtleOp::ColorPrevious:
                 if (!args.empty())
-                    state_.color = static_cast<std::uint16_t>(args[0]);
+                    state_.color = colorIndex(args[0]);
                 else if (state_.color > 0)
                     --state_.color;
                 break;
@@ -350,6 +350,14 @@ class TurtleMachine {
                 placeSurface(symbol, args);
                 break;
         }
+    }
+
+    // A colour index given as a parameter, clamped to 0..65535 as cpfg clamps to its
+    // colour map (not-a-number gives 0): a cast of an out-of-range double is undefined.
+    static std::uint16_t colorIndex(double v) {
+        if (!(v > 0)) return 0;
+        if (v >= 65535) return 65535;
+        return static_cast<std::uint16_t>(v);
     }
 
     // ABOP's $: roll about H so that L is horizontal (L = V x H / |V x H|, V = world up).
