@@ -35,10 +35,10 @@ std::optional<OutputKind> outputKindFor(const std::filesystem::path& p) {
 
 // Surfaces a file declares (`surface: l leaf.s 0.5`) are read relative to the file; a
 // name without a file on disk falls back to the built-in surfaces (leaf, petal).
-SurfaceLibrary surfacesFor(const LSystem& ls, const std::string& file) {
+SurfaceLibrary surfacesFor(const ViewSettings& view, const std::string& file) {
     SurfaceLibrary lib = SurfaceLibrary::builtin();
     std::filesystem::path dir = std::filesystem::path(file).parent_path();
-    for (const auto& decl : ls.view.surfaces) {
+    for (const auto& decl : view.surfaces) {
         std::filesystem::path path = dir / decl.file;
         Surface s;
         if (std::filesystem::exists(path)) {
@@ -58,9 +58,8 @@ SurfaceLibrary surfacesFor(const LSystem& ls, const std::string& file) {
     return lib;
 }
 
-RaytraceOptions raytraceOptions(const LSystem& ls, const RenderCommandOptions& out,
+RaytraceOptions raytraceOptions(const ViewSettings& v, const RenderCommandOptions& out,
                                 unsigned threads) {
-    const ViewSettings& v = ls.view;
     RaytraceOptions r;
     r.width = out.render.width;
     r.height = out.render.height;
@@ -97,27 +96,25 @@ int runRender(const InputOptions& in, const RenderCommandOptions& out) {
                         "to .svg, .png and .pdf, not 3D files");
     }
 
-    {
-        // A 2D PNG can be drawn while the derivation streams; everything else needs the scene.
-        Loaded l = loadInput(in);
-        bool png2D = *kind == OutputKind::Picture && imageFormatFor(out.output) == ImageFormat::Png;
-        bool pixelBound = png2D && streamedPictureIsSummarised(l.lsystem, l.steps);
-        if (chooseStreaming(l, in, png2D, true, pixelBound)) {
-            RenderOptions render = out.render;
-            double fill = std::clamp(l.lsystem.view.scaleFactor / 100.0, 0.01, 1.0);
-            render.margin = 0.5 - (0.5 - render.margin) * fill;
-            renderStreamedPng(l.lsystem, l.steps, derivationOptions(in), render, out.output);
-            return 0;
-        }
+    // A 2D PNG can be drawn while the derivation streams; everything else needs the scene.
+    Loaded l = loadInput(in);
+    bool png2D = *kind == OutputKind::Picture && imageFormatFor(out.output) == ImageFormat::Png;
+    bool pixelBound = png2D && streamedPictureIsSummarised(l.model, l.steps);
+    if (chooseStreaming(l, in, png2D, true, pixelBound)) {
+        RenderOptions render = out.render;
+        double fill = std::clamp(l.model.view.scaleFactor / 100.0, 0.01, 1.0);
+        render.margin = 0.5 - (0.5 - render.margin) * fill;
+        renderStreamedPng(l.model, l.steps, derivationOptions(in), render, out.output);
+        return 0;
     }
-    Derived d = loadAndDerive(in);
+    Derived d = deriveLoaded(std::move(l), in);
     Scene scene =
-        interpret(d.lsystem, applyHomomorphism(d.lsystem, d.modules, derivationOptions(in)));
-    if (int n = out.spline.value_or(d.lsystem.view.splineSubdivisions); n > 0)
+        interpret(d.model, applyHomomorphism(d.model.lsystem, d.modules, derivationOptions(in)));
+    if (int n = out.spline.value_or(d.model.view.splineSubdivisions); n > 0)
         scene = smoothSegments(scene, n);
-    if (!d.lsystem.view.colorMap.empty()) {
+    if (!d.model.view.colorMap.empty()) {
         std::filesystem::path map =
-            std::filesystem::path(in.file).parent_path() / d.lsystem.view.colorMap;
+            std::filesystem::path(in.file).parent_path() / d.model.view.colorMap;
         scene.palette = loadColorMap(map);
     }
 
@@ -128,18 +125,18 @@ int runRender(const InputOptions& in, const RenderCommandOptions& out) {
         if (scene.is3D) scene = projectScene(scene, view.value_or(ViewDirection::Front));
         RenderOptions render = out.render;
         // pfg's scale factor: the picture fills that share of the frame (100 = all of it).
-        double fill = std::clamp(d.lsystem.view.scaleFactor / 100.0, 0.01, 1.0);
+        double fill = std::clamp(d.model.view.scaleFactor / 100.0, 0.01, 1.0);
         render.margin = 0.5 - (0.5 - render.margin) * fill;
-        if (!out.backgroundGiven && d.lsystem.view.background)
-            render.background = *d.lsystem.view.background;
+        if (!out.backgroundGiven && d.model.view.background)
+            render.background = *d.model.view.background;
         writeImage(scene, render, out.output);
         return 0;
     }
 
-    SurfaceLibrary surfaces = surfacesFor(d.lsystem, in.file);
+    SurfaceLibrary surfaces = surfacesFor(d.model.view, in.file);
     MeshOptions mo;
     mo.tubeSides = out.tubeSides;
-    mo.cylinders = d.lsystem.view.lineStyle == LineStyle::Cylinders;
+    mo.cylinders = d.model.view.lineStyle == LineStyle::Cylinders;
     if (*kind == OutputKind::Picture) {
         // In a picture, a stem thinner than a pixel would vanish between the rays: draw it at
         // least about a pixel wide, as line art would. 3D files keep the true widths.
@@ -162,7 +159,7 @@ int runRender(const InputOptions& in, const RenderCommandOptions& out) {
             writeGlb(mesh, out.output);
             break;
         case OutputKind::Picture:
-            renderRaytraced(mesh, raytraceOptions(d.lsystem, out, in.threads), out.output);
+            renderRaytraced(mesh, raytraceOptions(d.model.view, out, in.threads), out.output);
             break;
     }
     return 0;
