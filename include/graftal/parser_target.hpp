@@ -113,4 +113,9 @@ class ModelBuilder : public ParserTarget {
     bool considered_ = false;
 };
 
+// Parses .l text into any target; what it finds wrong (and the target rejects) goes to
+// `diagnostics`, each with its end position. parse() is this with a ModelBuilder.
+void parseInto(std::string_view text, const ParseOptions& options, ParserTarget& target,
+               DiagnosticList& diagnostics);
+
 }  // namespace graftal

@@ -70,19 +70,26 @@ Model ParseResult::orThrow() && {
     return std::move(model);
 }
 
+void parseInto(std::string_view text, const ParseOptions& options, ParserTarget& target,
+               DiagnosticList& diagnostics) {
+    DiagnosticList diags;
+    SourceText src;
+    if (prepareSource(text, options.fileName, src, diags))
+        parsing::Parser(src, options, diags, target).run();
+    for (Diagnostic d : diags.items()) {
+        completeEnd(d.location, src);
+        diagnostics.add(std::move(d));
+    }
+}
+
 ParseResult parse(std::string_view text, const ParseOptions& options) {
     ParseResult result;
     DiagnosticList diags;
-    SourceText src;
-    if (prepareSource(text, options.fileName, src, diags)) {
-        ModelBuilder builder(diags);
-        parsing::Parser(src, options, diags, builder).run();
-        result.model = std::move(builder.model());
-    } else {
-        result.model.lsystem.name = result.model.lsystem.file = options.fileName;
-    }
+    ModelBuilder builder(diags);
+    builder.model().lsystem.name = builder.model().lsystem.file = options.fileName;
+    parseInto(text, options, builder, diags);
+    result.model = std::move(builder.model());
     result.diagnostics = diags.items();
-    for (auto& d : result.diagnostics) completeEnd(d.location, src);
     return result;
 }
 
