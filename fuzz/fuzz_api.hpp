@@ -48,25 +48,31 @@ inline void checkRejection(const graftal::Error& e, const char* stage) {
 
 // ---- .l text ------------------------------------------------------------------------
 
-// The model of `text`, or nullopt when the parser rejected it.
-inline std::optional<graftal::LSystem> parseModel(std::string_view text) {
+// The model of `text`, or nullopt when the parser rejected it. The parser returns its
+// diagnostics as values: a rejection must carry at least one error, each with a message.
+inline std::optional<graftal::Model> parseModel(std::string_view text,
+                                                std::vector<graftal::Diagnostic>* warnings = nullptr) {
     graftal::ParseOptions options;
     options.fileName = "fuzz.l";
-    try {
-        return graftal::parseLSystem(text, options);
-    } catch (const graftal::Error& e) {
-        checkRejection(e, "parse");
+    graftal::ParseResult result = graftal::parse(text, options);
+    for (const graftal::Diagnostic& d : result.diagnostics)
+        if (d.message.empty()) finding("parse: diagnostic without a message");
+    if (!result.ok()) {
+        if (result.errors().empty()) finding("parse: rejected without an error");
         return std::nullopt;
     }
+    if (warnings) *warnings = result.warnings();
+    return std::move(result.model);
 }
 
 // Parses and prints the model back (the printer walks every part the parser filled in).
 inline void parseAndPrint(std::string_view text) {
-    std::optional<graftal::LSystem> model = parseModel(text);
+    std::vector<graftal::Diagnostic> warnings;
+    std::optional<graftal::Model> model = parseModel(text, &warnings);
     if (!model) return;
     std::ostringstream printed;
-    model->print(printed);
-    for (const graftal::Diagnostic& d : model->warnings) printed << d << '\n';
+    printed << *model;
+    for (const graftal::Diagnostic& d : warnings) printed << d << '\n';
 }
 
 // ---- derivation, interpretation, writers ---------------------------------------------
@@ -150,8 +156,9 @@ inline void drawScene(const graftal::Scene& scene, const RunLimits& limits) {
 // Parses, predicts growth, derives step by step within `limits`, compares a streamed
 // derivation with the stored one, applies the homomorphism, interprets and draws.
 inline void deriveAndDraw(std::string_view text, const RunLimits& limits = {}) {
-    std::optional<graftal::LSystem> model = parseModel(text);
-    if (!model) return;
+    std::optional<graftal::Model> parsed = parseModel(text);
+    if (!parsed) return;
+    const graftal::LSystem* model = &parsed->lsystem;
     const auto start = std::chrono::steady_clock::now();
     const int steps = model->derivationLength > 0
                           ? std::min(model->derivationLength, limits.maxSteps)
@@ -163,7 +170,7 @@ inline void deriveAndDraw(std::string_view text, const RunLimits& limits = {}) {
     if (asksForProcess(*model)) options.environment = &quiet;
     try {
         graftal::GrowthPrediction growth = graftal::predictGrowth(*model, steps);
-        graftal::Derivation derivation(*model, options);
+        graftal::Derivation derivation(*parsed, options);
         while (derivation.stepsDone() < steps && derivation.current().size() <= limits.maxModules &&
                std::chrono::steady_clock::now() - start < limits.budget)
             derivation.step();
@@ -180,8 +187,8 @@ inline void deriveAndDraw(std::string_view text, const RunLimits& limits = {}) {
             sink.finish();
         }
         graftal::ModuleString seen = graftal::applyHomomorphism(*model, derived, options);
-        (void)graftal::measureModules(*model, seen);
-        graftal::Scene scene = graftal::interpret(*model, seen);
+        (void)graftal::measureModules(*parsed, seen);
+        graftal::Scene scene = graftal::interpret(*parsed, seen);
         drawScene(scene, limits);
         // Last, so that a wrong count does not hide what the stages above would find.
         if (growth.exact && growth.modules.size() > std::size_t(done)) {

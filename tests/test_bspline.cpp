@@ -8,7 +8,9 @@
 #include "test_helpers.hpp"
 
 using namespace graftal;
+using graftal::testing::loadExample;
 using graftal::testing::parse;
+using graftal::testing::parseModel;
 
 namespace {
 
@@ -38,7 +40,7 @@ bool insideUnitSquare(const Vec3& p) {
 }
 
 Scene draw(const std::string& text, int steps) {
-    LSystem ls = parse(text);
+    Model ls = parseModel(text);
     return interpret(ls, derive(ls, steps));
 }
 

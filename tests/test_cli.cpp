@@ -129,3 +129,22 @@ TEST(Cli, WarningsGoToStderrWithTheLine) {
     EXPECT_EQ(r.out, "bc\n");
     EXPECT_NE(r.err.find("w.l:4:1: warning:"), std::string::npos) << r.err;
 }
+
+TEST(Cli, EachWarningPrintsOnceForDeriveRenderAndStats) {
+    TempDir t;
+    auto f = t.write("w.l", "Lsystem: 1\naxiom: ba\na --> c\nb < a --> b\nendlsystem\n");
+    auto count = [](const std::string& text, const std::string& what) {
+        int n = 0;
+        for (auto p = text.find(what); p != std::string::npos; p = text.find(what, p + 1)) ++n;
+        return n;
+    };
+    auto svg = (t.path() / "w.svg").string();
+    for (const std::string& command :
+         {"derive " + f.string() + " -n 1", "render " + f.string() + " -n 1 -o " + svg,
+          "stats " + f.string() + " -n 1"}) {
+        SCOPED_TRACE(command);
+        auto r = runGraftal(command);
+        EXPECT_EQ(r.status, 0) << r.err;
+        EXPECT_EQ(count(r.err, "w.l:4:1: warning:"), 1) << r.err;
+    }
+}

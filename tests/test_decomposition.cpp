@@ -5,38 +5,41 @@
 
 using namespace graftal;
 using graftal::testing::derived;
+using graftal::testing::loadExample;
 using graftal::testing::parse;
 using graftal::testing::parseError;
+using graftal::testing::parseModel;
 
 TEST(Decomposition, AppliesRecursivelyAfterEveryStep) {
-    LSystem ls = parse(
+    Model ls = parseModel(
         "Lsystem: 1\naxiom: A\nA --> AB\n"
         "decomposition\nmaximum depth: 5\nB --> CC\nC --> D\nendlsystem\n");
-    EXPECT_EQ(derived(ls, 1), "ADD");
-    EXPECT_EQ(derived(ls, 2), "ADDDD");
+    EXPECT_EQ(derived(ls.lsystem, 1), "ADD");
+    EXPECT_EQ(derived(ls.lsystem, 2), "ADDDD");
 }
 
 TEST(Decomposition, StopsAtTheMaximumDepth) {
-    LSystem ls =
-        parse("Lsystem: 1\naxiom: A\ndecomposition\nmaximum depth: 3\nA --> aA\nendlsystem\n");
-    EXPECT_EQ(derived(ls, 0), "aaaA") << "the axiom is decomposed too";
+    Model ls =
+        parseModel("Lsystem: 1\naxiom: A\ndecomposition\nmaximum depth: 3\nA --> aA\nendlsystem\n");
+    EXPECT_EQ(derived(ls.lsystem, 0), "aaaA") << "the axiom is decomposed too";
 }
 
 TEST(Homomorphism, OnlyChangesWhatTheTurtleSees) {
-    LSystem ls = parse(
+    Model ls = parseModel(
         "Lsystem: 1\naxiom: I\nI --> II\n"
         "homomorphism\nmaximum depth: 2\nI --> S\nS --> F\nendlsystem\n");
     ModuleString s = derive(ls, 2);
-    EXPECT_EQ(s.toString(ls.symbols), "IIII");
-    EXPECT_EQ(applyHomomorphism(ls, s).toString(ls.symbols), "FFFF");
-    EXPECT_EQ(interpret(ls, applyHomomorphism(ls, s)).segments.size(), 4u);
+    EXPECT_EQ(s.toString(ls.lsystem.symbols), "IIII");
+    EXPECT_EQ(applyHomomorphism(ls.lsystem, s).toString(ls.lsystem.symbols), "FFFF");
+    EXPECT_EQ(interpret(ls, applyHomomorphism(ls.lsystem, s)).segments.size(), 4u);
 }
 
 TEST(Homomorphism, ParametersFlowThrough) {
-    LSystem ls = parse(
+    Model ls = parseModel(
         "Lsystem: 1\naxiom: L(2)\nL(i) --> L(i+1)\n"
         "homomorphism\nL(s) --> [+F(s)][-F(s)]\nendlsystem\n");
-    EXPECT_EQ(applyHomomorphism(ls, derive(ls, 1)).toString(ls.symbols), "[+F(3)][-F(3)]");
+    EXPECT_EQ(applyHomomorphism(ls.lsystem, derive(ls, 1)).toString(ls.lsystem.symbols),
+              "[+F(3)][-F(3)]");
 }
 
 TEST(Homomorphism, ContextIsRefused) {
@@ -45,12 +48,12 @@ TEST(Homomorphism, ContextIsRefused) {
 }
 
 TEST(Cut, RemovesTheRestOfItsBranchAtTheNextStep) {
-    LSystem ls = parse("Lsystem: 1\naxiom: A\nA --> B[C%DE[G]H]X\nendlsystem\n");
-    EXPECT_EQ(derived(ls, 1), "B[C%DE[G]H]X");
-    EXPECT_EQ(derived(ls, 2), "B[C]X");
+    Model ls = parseModel("Lsystem: 1\naxiom: A\nA --> B[C%DE[G]H]X\nendlsystem\n");
+    EXPECT_EQ(derived(ls.lsystem, 1), "B[C%DE[G]H]X");
+    EXPECT_EQ(derived(ls.lsystem, 2), "B[C]X");
 }
 
 TEST(Cut, OnTheMainAxisRemovesEverythingAfter) {
-    LSystem ls = parse("Lsystem: 1\naxiom: AB%C[D]E\nA --> AA\nendlsystem\n");
-    EXPECT_EQ(derived(ls, 1), "AAB");
+    Model ls = parseModel("Lsystem: 1\naxiom: AB%C[D]E\nA --> AA\nendlsystem\n");
+    EXPECT_EQ(derived(ls.lsystem, 1), "AAB");
 }

@@ -87,6 +87,51 @@ TEST(Derivation, RunTimeDivisionByZeroNamesModuleAndStep) {
     }
 }
 
+// The first error of deriving `text` for `steps` steps.
+Diagnostic runTimeError(const std::string& text, int steps) {
+    LSystem ls = parse(text);
+    try {
+        derive(ls, steps);
+    } catch (const Error& e) {
+        return e.diagnostics().front();
+    }
+    ADD_FAILURE() << "expected an error";
+    return {};
+}
+
+TEST(Derivation, RunTimeErrorInASuccessorCarriesTheProductionsSpan) {
+    Diagnostic d =
+        runTimeError("Lsystem: 1\naxiom: A(2)\nA(x) --> A(x-1)B(1/(x-1))\nendlsystem\n", 3);
+    EXPECT_EQ(d.toString(),
+              "test.l:3:1: error: division by zero in '1/(x-1)' (while rewriting module 0 "
+              "'A(1)' in derivation step 2)");
+    EXPECT_EQ(d.location.endLine, 3);
+    EXPECT_EQ(d.location.endColumn, 26) << "just past 'A(x) --> A(x-1)B(1/(x-1))'";
+}
+
+TEST(Derivation, RunTimeErrorInAConditionNamesItsProductionNotTheFirstCandidate) {
+    Diagnostic d = runTimeError(
+        "Lsystem: 1\naxiom: F A(3)\nA(x) : x > 5 --> B\n  A(x) : 1/(x-2) > 0 --> A(x-1)\n"
+        "endlsystem\n",
+        3);
+    EXPECT_EQ(d.toString(),
+              "test.l:4:3: error: division by zero in '1/(x-2) > 0' (while rewriting module 1 "
+              "'A(2)' in derivation step 2)");
+    EXPECT_EQ(d.location.endLine, 4);
+    EXPECT_EQ(d.location.endColumn, 32);
+}
+
+TEST(Derivation, RunTimeErrorInADecompositionNamesItsProduction) {
+    Diagnostic d = runTimeError(
+        "Lsystem: 1\naxiom: C(1)\nC(x) --> C(x-1)A(x-1)\ndecomposition\nA(x) --> B(1/x)\n"
+        "endlsystem\n",
+        1);
+    EXPECT_EQ(d.location.line, 5);
+    EXPECT_EQ(d.location.column, 1);
+    EXPECT_EQ(d.location.endColumn, 16);
+    EXPECT_NE(d.message.find("'A(0)' in derivation step 1"), std::string::npos) << d.message;
+}
+
 TEST(Derivation, MemoryLimitRefusesBeforeAllocating) {
     LSystem ls = parse("Lsystem: 1\naxiom: F\nF --> FFFFFFFFFF\nendlsystem\n");
     DerivationOptions o;

@@ -286,8 +286,8 @@ TEST(Gallery, NoExampleRendersBlank) {
 TEST(GalleryModels, AbopTreesHaveSlenderTrunks) {
     for (const char* name : {"honda-monopodial-tree.l", "aono-kunii-sympodial-tree.l"}) {
         SCOPED_TRACE(name);
-        LSystem ls = loadLSystem(fs::path(GRAFTAL_EXAMPLES_DIR) / name);
-        Scene scene = interpret(ls, applyHomomorphism(ls, derive(ls)));
+        Model m = loadModel(fs::path(GRAFTAL_EXAMPLES_DIR) / name).orThrow();
+        Scene scene = interpret(m, applyHomomorphism(m.lsystem, derive(m)));
         ASSERT_FALSE(scene.segments.empty());
         float widest = 0;
         for (const Segment& s : scene.segments) widest = std::max(widest, s.width);
@@ -300,8 +300,8 @@ TEST(GalleryModels, AbopTreesHaveSlenderTrunks) {
 // To the turtle Fl and Fr are both F: the Fl/Fr dragon is the same curve as the l/r one.
 TEST(GalleryModels, FlFrDragonDrawsTheDragon) {
     auto sceneOf = [](const char* name) {
-        LSystem ls = loadLSystem(fs::path(GRAFTAL_EXAMPLES_DIR) / name);
-        return interpret(ls, applyHomomorphism(ls, derive(ls)));
+        Model m = loadModel(fs::path(GRAFTAL_EXAMPLES_DIR) / name).orThrow();
+        return interpret(m, applyHomomorphism(m.lsystem, derive(m)));
     };
     Scene flfr = sceneOf("fig2.6-dragon-curve-fl-fr.l"), lr = sceneOf("fig2.6-dragon-curve-lr.l");
     EXPECT_EQ(flfr.segments.size(), 1024u);

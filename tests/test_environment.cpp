@@ -13,7 +13,9 @@
 
 using namespace graftal;
 using graftal::testing::derived;
+using graftal::testing::loadExample;
 using graftal::testing::parse;
+using graftal::testing::parseModel;
 namespace fs = std::filesystem;
 
 namespace {
@@ -23,8 +25,8 @@ const fs::path kExamples = GRAFTAL_EXAMPLES_DIR;
 // The first diagnostic building a file's environment produces, or "" when it builds.
 std::string environmentError(const std::string& text) {
     try {
-        LSystem ls = parse(text);
-        makeEnvironment(ls);
+        Model ls = parseModel(text);
+        makeEnvironment(ls.lsystem);
     } catch (const Error& e) {
         return e.diagnostics().front().toString();
     }
@@ -32,7 +34,7 @@ std::string environmentError(const std::string& text) {
 }
 
 // The message of the Error a derivation throws, or "" when it succeeds.
-std::string derivationError(const LSystem& ls, int steps, DerivationOptions o = {}) {
+std::string derivationError(const Model& ls, int steps, DerivationOptions o = {}) {
     try {
         derive(ls, steps, o);
     } catch (const Error& e) {
@@ -81,13 +83,13 @@ void expectNear(const Vec3& v, double x, double y, double z) {
 // --- The interface -------------------------------------------------------------------
 
 TEST(Environment, ReceivesFramesInStringOrderAndItsAnswersAreDerived) {
-    LSystem ls = parse(
+    Model ls = parseModel(
         "Lsystem: 1\nangle increment: 90\n"
         "axiom: F ?E(5) + F(2) ?E(6,7) ?E\nendlsystem\n");
     RecordingEnvironment env;
     DerivationOptions o;
     o.environment = &env;
-    EXPECT_EQ(derive(ls, 0, o).toString(ls.symbols), "F?E(0)+F(2)?E(1,1)?E");
+    EXPECT_EQ(derive(ls, 0, o).toString(ls.lsystem.symbols), "F?E(0)+F(2)?E(1,1)?E");
     ASSERT_EQ(env.seen.size(), 3u);
     EXPECT_EQ(env.seen[0].step, 0);
     EXPECT_EQ(env.seen[0].module, 1u) << "the module's position in the string";
@@ -104,13 +106,13 @@ TEST(Environment, ReceivesFramesInStringOrderAndItsAnswersAreDerived) {
 }
 
 TEST(Environment, IsAskedAfterEveryStepAndProductionsReadTheAnswers) {
-    LSystem ls = parse(
+    Model ls = parseModel(
         "Lsystem: 1\naxiom: A?E(0)\n"
         "A > ?E(t) : t < 200 --> FA\nA > ?E(t) : t >= 200 --> B\nendlsystem\n");
     RecordingEnvironment env;
     DerivationOptions o;
     o.environment = &env;
-    EXPECT_EQ(derive(ls, 4, o).toString(ls.symbols), "FFB?E(400)");
+    EXPECT_EQ(derive(ls, 4, o).toString(ls.lsystem.symbols), "FFB?E(400)");
     ASSERT_EQ(env.seen.size(), 5u) << "once for the axiom and once per step";
     for (int s = 0; s <= 4; ++s) EXPECT_EQ(env.seen[s].step, s);
     EXPECT_EQ(env.seen[3].params, std::vector<double>{200}) << "its own answer of step 2";
@@ -118,24 +120,24 @@ TEST(Environment, IsAskedAfterEveryStepAndProductionsReadTheAnswers) {
 }
 
 TEST(Environment, OptionsEnvironmentReplacesTheFilesOne) {
-    LSystem ls = parse(withEnvironment("environment: clock\n", "axiom: ?E(9)\n"));
-    EXPECT_EQ(derived(ls, 3), "?E(3)");
+    Model ls = parseModel(withEnvironment("environment: clock\n", "axiom: ?E(9)\n"));
+    EXPECT_EQ(derived(ls.lsystem, 3), "?E(3)");
     RecordingEnvironment env;
     DerivationOptions o;
     o.environment = &env;
-    EXPECT_EQ(derive(ls, 3, o).toString(ls.symbols), "?E(300)");
+    EXPECT_EQ(derive(ls, 3, o).toString(ls.lsystem.symbols), "?E(300)");
 }
 
 TEST(Environment, NoEnvironmentLinesMeansNoEnvironment) {
-    LSystem ls = parse("Lsystem: 1\naxiom: A?E(4)\nendlsystem\n");
-    EXPECT_EQ(makeEnvironment(ls), nullptr);
-    EXPECT_EQ(derived(ls, 2), "A?E(4)") << "unanswered ?E modules keep their values";
+    Model ls = parseModel("Lsystem: 1\naxiom: A?E(4)\nendlsystem\n");
+    EXPECT_EQ(makeEnvironment(ls.lsystem), nullptr);
+    EXPECT_EQ(derived(ls.lsystem, 2), "A?E(4)") << "unanswered ?E modules keep their values";
 }
 
 TEST(Environment, NamesOfTheBuiltInEnvironments) {
     auto nameOf = [](const std::string& lines) {
-        LSystem ls = parse(withEnvironment(lines, "axiom: A\n"));
-        return makeEnvironment(ls)->name();
+        Model ls = parseModel(withEnvironment(lines, "axiom: A\n"));
+        return makeEnvironment(ls.lsystem)->name();
     };
     EXPECT_EQ(nameOf("environment: clock\n"), "clock");
     EXPECT_EQ(nameOf("environment: obstacles\nenvironment: sphere 0 0 0 radius 1\n"), "obstacles");
@@ -147,20 +149,21 @@ TEST(Environment, NamesOfTheBuiltInEnvironments) {
 // --- The lecture's example -----------------------------------------------------------
 
 TEST(LectureOpenLSystem, DerivesThePrintedStringsExactly) {
-    LSystem ls = loadLSystem(kExamples / "lecture-open-lsystem-distance-limit.l");
-    EXPECT_EQ(derived(ls, 0), "F(0,0)A?E(0)");
-    EXPECT_EQ(derived(ls, 1), "F(0,0)F(0,1)A?E(1)");
-    EXPECT_EQ(derived(ls, 2), "F(0,0)F(0,1)F(0,2)A?E(2)");
-    EXPECT_EQ(derived(ls, 3), "F(0,0)F(0,1)F(0,2)?E(3)");
-    EXPECT_EQ(derived(ls, 4), "F(0,0)F(0,1)F(0,2)?E(4)") << "the plant stops; time goes on";
+    Model ls = loadExample(kExamples / "lecture-open-lsystem-distance-limit.l");
+    EXPECT_EQ(derived(ls.lsystem, 0), "F(0,0)A?E(0)");
+    EXPECT_EQ(derived(ls.lsystem, 1), "F(0,0)F(0,1)A?E(1)");
+    EXPECT_EQ(derived(ls.lsystem, 2), "F(0,0)F(0,1)F(0,2)A?E(2)");
+    EXPECT_EQ(derived(ls.lsystem, 3), "F(0,0)F(0,1)F(0,2)?E(3)");
+    EXPECT_EQ(derived(ls.lsystem, 4), "F(0,0)F(0,1)F(0,2)?E(4)")
+        << "the plant stops; time goes on";
     // The picture is the derivation: the string draws nothing (the homomorphism erases F),
     // and the diagram's rows are the four printed strings, ?E's answer under ?E.
-    Scene scene = interpret(ls, applyHomomorphism(ls, derive(ls)));
+    Scene scene = interpret(ls, applyHomomorphism(ls.lsystem, derive(ls)));
     EXPECT_TRUE(scene.segments.empty());
     std::vector<ModuleString> steps;
     for (int k = 0; k <= 3; ++k) steps.push_back(derive(ls, k));
     RenderOptions o;
-    DerivationDiagram d = layoutDerivationDiagram(steps, ls.symbols, o);
+    DerivationDiagram d = layoutDerivationDiagram(steps, ls.lsystem.symbols, o);
     ASSERT_EQ(d.rows.size(), 4u);
     EXPECT_EQ(d.rows[3].cells.size(), 4u);
     EXPECT_EQ(d.rows[3].cells.back().label, "?E");
@@ -171,41 +174,41 @@ TEST(LectureOpenLSystem, DerivesThePrintedStringsExactly) {
 TEST(LectureOpenLSystem, APositionReadingDiffersOnlyInTheLastValue) {
     // The same rules with the tip's position (?P) as the answer; F(x,y) is drawn as the unit
     // step it is in this model. Identical up to step 2; then 2 where the lecture prints 3.
-    LSystem ls = parse(
+    Model ls = parseModel(
         "#define x 0\nLsystem: 1\naxiom: F(0,0)A?P(0,0)\n"
         "A > ?P(px,y) : y < 2 --> F(x, y+1)A\nA > ?P(px,y) : y >= 2 --> *\n"
         "homomorphism\nF(u,v) : v > 0 --> F(1)\nF(u,v) --> *\nendlsystem\n");
-    EXPECT_EQ(derived(ls, 1), "F(0,0)F(0,1)A?P(0,1)");
-    EXPECT_EQ(derived(ls, 2), "F(0,0)F(0,1)F(0,2)A?P(0,2)");
-    EXPECT_EQ(derived(ls, 3), "F(0,0)F(0,1)F(0,2)?P(0,2)");
+    EXPECT_EQ(derived(ls.lsystem, 1), "F(0,0)F(0,1)A?P(0,1)");
+    EXPECT_EQ(derived(ls.lsystem, 2), "F(0,0)F(0,1)F(0,2)A?P(0,2)");
+    EXPECT_EQ(derived(ls.lsystem, 3), "F(0,0)F(0,1)F(0,2)?P(0,2)");
 }
 
 // --- clock ---------------------------------------------------------------------------
 
 TEST(ClockEnvironment, WritesTheStepNumberIntoTheFirstParameter) {
-    LSystem ls = parse(withEnvironment("environment: clock\n", "axiom: ?E(7,8) ?E\n"));
-    EXPECT_EQ(derived(ls, 0), "?E(0,8)?E");
-    EXPECT_EQ(derived(ls, 5), "?E(5,8)?E");
+    Model ls = parseModel(withEnvironment("environment: clock\n", "axiom: ?E(7,8) ?E\n"));
+    EXPECT_EQ(derived(ls.lsystem, 0), "?E(0,8)?E");
+    EXPECT_EQ(derived(ls.lsystem, 5), "?E(5,8)?E");
 }
 
 // --- obstacles -----------------------------------------------------------------------
 
 TEST(ObstacleEnvironment, AnApexStopsWhereTheSphereBegins) {
     std::string rules = "axiom: A?E(0,0,0,0,0)\nA > ?E(c,d,x,y,z) : c == 0 --> FA\nendlsystem\n";
-    LSystem touching =
-        parse("Lsystem: 1\nenvironment: obstacles\nenvironment: sphere 0 5 0 radius 1\n" + rules);
-    EXPECT_EQ(derived(touching, 2), "FFA?E(0,2,0,-1,0)") << "2 units below the surface";
-    EXPECT_EQ(derived(touching, 8), "FFFFA?E(1,0,0,-1,0)") << "on the surface: collision";
-    LSystem withMargin =
-        parse("Lsystem: 1\nenvironment: obstacles margin 1\nenvironment: sphere 0 5 0 radius 1\n" +
-              rules);
-    EXPECT_EQ(derived(withMargin, 8), "FFFA?E(1,1,0,-1,0)") << "stops one unit earlier";
+    Model touching = parseModel(
+        "Lsystem: 1\nenvironment: obstacles\nenvironment: sphere 0 5 0 radius 1\n" + rules);
+    EXPECT_EQ(derived(touching.lsystem, 2), "FFA?E(0,2,0,-1,0)") << "2 units below the surface";
+    EXPECT_EQ(derived(touching.lsystem, 8), "FFFFA?E(1,0,0,-1,0)") << "on the surface: collision";
+    Model withMargin = parseModel(
+        "Lsystem: 1\nenvironment: obstacles margin 1\nenvironment: sphere 0 5 0 radius 1\n" +
+        rules);
+    EXPECT_EQ(derived(withMargin.lsystem, 8), "FFFA?E(1,1,0,-1,0)") << "stops one unit earlier";
 }
 
 TEST(ObstacleEnvironment, DistancesAndWayOutForEveryShape) {
     // Probes (f moves, nothing drawn) below, inside and above a box, behind a plane (the
     // solid x < -3) and at the centre of a sphere; each ?E gets the nearest obstacle.
-    LSystem ls = parse(
+    Model ls = parseModel(
         "Lsystem: 1\n"
         "environment: obstacles\n"
         "environment: box -1 2 -1 1 3 1\n"
@@ -214,21 +217,23 @@ TEST(ObstacleEnvironment, DistancesAndWayOutForEveryShape) {
         "axiom: [?E(0,0,0,0,0)] f(2.5) ?E(0,0,0,0,0) f(2) ?E(0,0,0,0,0) "
         "[+(90) f(8) ?E(0,0,0,0,0)] [-(90) f(1) ?E(0,0)] f(-24.5) ?E(0,0,0,0,0,9)\n"
         "endlsystem\n");
-    EXPECT_EQ(derived(ls, 0),
+    EXPECT_EQ(derived(ls.lsystem, 0),
               "[?E(0,2,0,-1,0)]f(2.5)?E(1,-0.5,0,1,0)f(2)?E(0,1.5,0,1,0)"
               "[+(90)f(8)?E(1,-5,1,0,0)][-(90)f(1)?E(0,1.5)]f(-24.5)?E(1,-0.5,0,1,0,9)");
 }
 
 TEST(ObstacleEnvironment, ShapesMayUseDefinesAndExpressions) {
-    LSystem ls = parse(
+    Model ls = parseModel(
         "#define R 2\nLsystem: 1\nenvironment: obstacles\n"
         "environment: sphere 0 2*R 0 radius R\naxiom: ?E(0,0)\nendlsystem\n");
-    EXPECT_EQ(derived(ls, 0), "?E(0,2)");
+    EXPECT_EQ(derived(ls.lsystem, 0), "?E(0,2)");
 }
 
 TEST(ObstacleEnvironment, TheAvoidanceExampleNeverGrowsIntoAnObstacle) {
-    LSystem ls = loadLSystem(kExamples / "open-obstacle-avoidance.l");
-    auto constant = [&](const char* name) { return evaluateConstant(name, {}, ls.defines); };
+    Model ls = loadExample(kExamples / "open-obstacle-avoidance.l");
+    auto constant = [&](const char* name) {
+        return evaluateConstant(name, {}, ls.lsystem.defines);
+    };
     Vec3 c{constant("SX"), constant("SY"), 0};
     double r = constant("SR");
     double x0 = constant("WX0"), y0 = constant("WY0"), x1 = constant("WX1"), y1 = constant("WY1");
@@ -237,15 +242,15 @@ TEST(ObstacleEnvironment, TheAvoidanceExampleNeverGrowsIntoAnObstacle) {
         bool inBox = p.x > x0 + 1e-9 && p.x < x1 - 1e-9 && p.y > y0 + 1e-9 && p.y < y1 - 1e-9;
         return inSphere || inBox;
     };
-    auto count = [](const ModuleString& s, const LSystem& l, const std::string& sym) {
-        std::string text = s.toString(l.symbols);
+    auto count = [](const ModuleString& s, const Model& l, const std::string& sym) {
+        std::string text = s.toString(l.lsystem.symbols);
         std::size_t n = 0;
         for (std::size_t p = 0; (p = text.find(sym, p)) != std::string::npos; ++p) ++n;
         return n;
     };
 
     ModuleString s = derive(ls);
-    Scene scene = interpret(ls, applyHomomorphism(ls, s));
+    Scene scene = interpret(ls, applyHomomorphism(ls.lsystem, s));
     for (const Segment& seg : scene.segments) {
         EXPECT_FALSE(inside(seg.a) || inside(seg.b))
             << "segment (" << seg.a.x << "," << seg.a.y << ")-(" << seg.b.x << "," << seg.b.y
@@ -254,8 +259,8 @@ TEST(ObstacleEnvironment, TheAvoidanceExampleNeverGrowsIntoAnObstacle) {
     EXPECT_GE(count(s, ls, "X"), 10u) << "apices that met an obstacle flowered";
     EXPECT_GE(count(s, ls, "A("), 10u) << "others grew on around the obstacles";
 
-    ls.environment.clear();  // without its environment the same shrub grows through them
-    Scene blind = interpret(ls, applyHomomorphism(ls, derive(ls)));
+    ls.lsystem.environment.clear();  // without its environment the same shrub grows through them
+    Scene blind = interpret(ls, applyHomomorphism(ls.lsystem, derive(ls)));
     std::size_t entering = 0;
     for (const Segment& seg : blind.segments) entering += inside(seg.b);
     EXPECT_GT(entering, 50u);
@@ -264,26 +269,26 @@ TEST(ObstacleEnvironment, TheAvoidanceExampleNeverGrowsIntoAnObstacle) {
 // --- occupancy and light -------------------------------------------------------------
 
 TEST(OccupancyEnvironment, CountsTheOthersInTheSameCell) {
-    LSystem ls = parse(withEnvironment(
+    Model ls = parseModel(withEnvironment(
         "environment: occupancy cell 1\n",
         "axiom: ?E(9,9) f(0.5) ?E(9,9) f(0.4) ?E(9) f(2) ?E(9,9) [-(90) f(0.5) ?E(9,9)]\n"));
-    EXPECT_EQ(derived(ls, 0),
+    EXPECT_EQ(derived(ls.lsystem, 0),
               "?E(2,0.3333333333333333)f(0.5)?E(2,0.3333333333333333)f(0.4)?E(2)f(2)?E(1,0.5)"
               "[-(90)f(0.5)?E(1,0.5)]");
 }
 
 TEST(OccupancyEnvironment, CountsTheOthersWithinTheRadius) {
-    LSystem ls = parse(withEnvironment(
+    Model ls = parseModel(withEnvironment(
         "environment: occupancy radius 0.5\n",
         "axiom: ?E(9) f(0.5) ?E(9) f(0.4) ?E(9) f(2) ?E(9) [+(90) f(0.3) ?E(9)]\n"));
-    EXPECT_EQ(derived(ls, 0), "?E(1)f(0.5)?E(2)f(0.4)?E(1)f(2)?E(1)[+(90)f(0.3)?E(1)]")
+    EXPECT_EQ(derived(ls.lsystem, 0), "?E(1)f(0.5)?E(2)f(0.4)?E(1)f(2)?E(1)[+(90)f(0.3)?E(1)]")
         << "exactly one radius apart counts";
 }
 
 TEST(OccupancyEnvironment, LightIsTheSameFieldAnsweredAsLightFirst) {
-    LSystem ls = parse(withEnvironment(
+    Model ls = parseModel(withEnvironment(
         "environment: light\n", "axiom: ?E(9,9) f(0.2) ?E(9,9) f(0.2) ?E(9,9) f(5) ?E(9,9)\n"));
-    EXPECT_EQ(derived(ls, 0),
+    EXPECT_EQ(derived(ls.lsystem, 0),
               "?E(0.3333333333333333,2)f(0.2)?E(0.3333333333333333,2)"
               "f(0.2)?E(0.3333333333333333,2)f(5)?E(1,0)")
         << "default: cells of side 1";
@@ -291,39 +296,39 @@ TEST(OccupancyEnvironment, LightIsTheSameFieldAnsweredAsLightFirst) {
 
 TEST(OccupancyEnvironment, RoundingNoiseDoesNotMoveAPointAcrossACellBoundary) {
     // Ten steps of 0.1 end at 0.9999999999999999: meant to be 1, in the same cell as f(1).
-    LSystem ls = parse(
+    Model ls = parseModel(
         withEnvironment("environment: occupancy cell 1\n",
                         "axiom: [f(0.1)f(0.1)f(0.1)f(0.1)f(0.1)f(0.1)f(0.1)f(0.1)f(0.1)f(0.1) "
                         "?E(9)] f(1.5) ?E(9)\n"));
-    EXPECT_EQ(derived(ls, 0),
+    EXPECT_EQ(derived(ls.lsystem, 0),
               "[f(0.1)f(0.1)f(0.1)f(0.1)f(0.1)f(0.1)f(0.1)f(0.1)f(0.1)f(0.1)?E(1)]f(1.5)?E(1)");
 }
 
 TEST(OccupancyEnvironment, CrowdedApicesStopAndThePlantDiffersFromTheOpenOne) {
-    LSystem ls = loadLSystem(kExamples / "open-crowding-stops-branches.l");
+    Model ls = loadExample(kExamples / "open-crowding-stops-branches.l");
     ModuleString s = derive(ls);
-    std::string text = s.toString(ls.symbols);
+    std::string text = s.toString(ls.lsystem.symbols);
     EXPECT_EQ(text.find("A("), std::string::npos) << "every apex has stopped by itself";
     std::size_t leaves = std::count(text.begin(), text.end(), 'V');
     EXPECT_GT(leaves, 50u);
-    Scene crowded = interpret(ls, applyHomomorphism(ls, s));
+    Scene crowded = interpret(ls, applyHomomorphism(ls.lsystem, s));
 
-    LSystem open = ls;
-    open.environment.clear();
-    Scene free = interpret(open, applyHomomorphism(open, derive(open)));
-    EXPECT_EQ(free.segments.size(), (std::size_t(1) << (ls.derivationLength + 1)) - 1)
+    Model open = ls;
+    open.lsystem.environment.clear();
+    Scene free = interpret(open, applyHomomorphism(open.lsystem, derive(open)));
+    EXPECT_EQ(free.segments.size(), (std::size_t(1) << (ls.lsystem.derivationLength + 1)) - 1)
         << "without the environment: a full binary tree";
     EXPECT_LT(crowded.segments.size() * 20, free.segments.size());
 }
 
 TEST(OccupancyEnvironment, AnswersDoNotDependOnTheThreadCount) {
-    LSystem ls = loadLSystem(kExamples / "open-crowding-stops-branches.l");
+    Model ls = loadExample(kExamples / "open-crowding-stops-branches.l");
     DerivationOptions one, many;
     one.threads = 1;
     many.threads = 7;
     for (int n : {6, 9, 12})
-        EXPECT_EQ(derive(ls, n, one).toString(ls.symbols),
-                  derive(ls, n, many).toString(ls.symbols));
+        EXPECT_EQ(derive(ls, n, one).toString(ls.lsystem.symbols),
+                  derive(ls, n, many).toString(ls.lsystem.symbols));
 }
 
 // --- process -------------------------------------------------------------------------
@@ -339,8 +344,8 @@ TEST(ProcessEnvironment, SpeaksTheDocumentedLineProtocol) {
                               "Lsystem: 1\nangle increment: 90\nenvironment: process sh env.sh\n"
                               "axiom: F?E(1,2)+F(0.5)A?E(0.25,-3)\nA --> FA\nendlsystem\n");
     {
-        LSystem ls = loadLSystem(file);  // the program runs in the file's directory
-        EXPECT_EQ(derived(ls, 1), "F?E(7,8)+F(0.5)FA?E(7,8)");
+        Model ls = loadExample(file);  // the program runs in the file's directory
+        EXPECT_EQ(derived(ls.lsystem, 1), "F?E(7,8)+F(0.5)FA?E(7,8)");
     }
     EXPECT_EQ(graftal::testing::readFile(dir.path() / "log.txt"),
               "step 0 2\n"
@@ -354,15 +359,15 @@ TEST(ProcessEnvironment, SpeaksTheDocumentedLineProtocol) {
 TEST(ProcessEnvironment, TheReferenceHeightFieldProgram) {
     if (!haveCommand("python3")) GTEST_SKIP() << "python3 is not installed";
     std::string script = (kExamples / "environments" / "height_field.py").string();
-    LSystem ls = parse(withEnvironment("environment: process python3 '" + script + "' 4\n",
-                                       "axiom: A?E(9,0)\nA > ?E(c,h) : c >= 1 --> FA\n"));
-    EXPECT_EQ(derived(ls, 0), "A?E(4,4)");
-    EXPECT_EQ(derived(ls, 1), "FA?E(3,4)");
-    EXPECT_EQ(derived(ls, 8), "FFFFA?E(0,4)");
+    Model ls = parseModel(withEnvironment("environment: process python3 '" + script + "' 4\n",
+                                          "axiom: A?E(9,0)\nA > ?E(c,h) : c >= 1 --> FA\n"));
+    EXPECT_EQ(derived(ls.lsystem, 0), "A?E(4,4)");
+    EXPECT_EQ(derived(ls.lsystem, 1), "FA?E(3,4)");
+    EXPECT_EQ(derived(ls.lsystem, 8), "FFFFA?E(0,4)");
 
     // The example next to it: every stem flowers just under the ceiling.
-    LSystem ceiling = loadLSystem(kExamples / "environments" / "open-height-field-ceiling.l");
-    std::string s = derived(ceiling, ceiling.derivationLength);
+    Model ceiling = loadExample(kExamples / "environments" / "open-height-field-ceiling.l");
+    std::string s = derived(ceiling.lsystem, ceiling.lsystem.derivationLength);
     EXPECT_EQ(std::count(s.begin(), s.end(), 'X'), 21);
 }
 
@@ -371,25 +376,25 @@ TEST(ProcessEnvironment, FromCppWithMakeExternalProcessEnvironment) {
         "while read w s n; do i=0; while [ $i -lt $n ]; do read line; set -- $line;"
         " echo \"$s$1\"; i=$((i+1)); done; done");
     EXPECT_EQ(env->name(), "process");
-    LSystem ls = parse("Lsystem: 1\naxiom: ?E(0) f ?E(0)\nA --> A\nendlsystem\n");
+    Model ls = parseModel("Lsystem: 1\naxiom: ?E(0) f ?E(0)\nA --> A\nendlsystem\n");
     DerivationOptions o;
     o.environment = env.get();
-    EXPECT_EQ(derive(ls, 2, o).toString(ls.symbols), "?E(20)f?E(22)")
+    EXPECT_EQ(derive(ls, 2, o).toString(ls.lsystem.symbols), "?E(20)f?E(22)")
         << "the step number followed by the module index";
 }
 
 TEST(ProcessEnvironment, ProgramThatExitsEarly) {
-    LSystem ls =
-        parse(withEnvironment("environment: process echo oops >&2; exit 3\n", "axiom: A?E(0)\n"));
+    Model ls = parseModel(
+        withEnvironment("environment: process echo oops >&2; exit 3\n", "axiom: A?E(0)\n"));
     EXPECT_EQ(derivationError(ls, 1),
               "test.l:2:14: error: the environment program 'echo oops >&2; exit 3' exited with "
               "status 3 in step 0 after 0 of 1 answer lines; its error output ends with: oops");
 }
 
 TEST(ProcessEnvironment, ProgramThatDiesAfterSomeSteps) {
-    LSystem ls =
-        parse(withEnvironment("environment: process read h; read r; echo 5; read h; exit 0\n",
-                              "axiom: A?E(0)\nA --> FA\n"));
+    Model ls =
+        parseModel(withEnvironment("environment: process read h; read r; echo 5; read h; exit 0\n",
+                                   "axiom: A?E(0)\nA --> FA\n"));
     std::string e = derivationError(ls, 3);
     EXPECT_NE(e.find("exited with status 0 in step 1 after 0 of 1 answer lines"), std::string::npos)
         << e;
@@ -397,7 +402,7 @@ TEST(ProcessEnvironment, ProgramThatDiesAfterSomeSteps) {
 
 TEST(ProcessEnvironment, MalformedAnswers) {
     auto errorFor = [](const std::string& program) {
-        LSystem ls = parse(
+        Model ls = parseModel(
             withEnvironment("environment: process " + program + "\n", "axiom: A?E(0,0) ?E(1)\n"));
         return derivationError(ls, 0);
     };
@@ -420,8 +425,8 @@ TEST(ProcessEnvironment, MalformedAnswers) {
 }
 
 TEST(ProcessEnvironment, CommandNotFound) {
-    LSystem ls =
-        parse(withEnvironment("environment: process no_such_program_graftal\n", "axiom: ?E(0)\n"));
+    Model ls = parseModel(
+        withEnvironment("environment: process no_such_program_graftal\n", "axiom: ?E(0)\n"));
     std::string e = derivationError(ls, 0);
     EXPECT_NE(e.find("exited with status 127"), std::string::npos) << e;
     EXPECT_NE(e.find("not found"), std::string::npos) << e;
@@ -431,7 +436,7 @@ TEST(ProcessEnvironment, ASilentProgramTimesOutInsteadOfHanging) {
     // Many requests: the program never reads them, so the pipe fills; still no hang.
     std::string axiom = "axiom:";
     for (int i = 0; i < 20000; ++i) axiom += " ?E(1,2,3)";
-    LSystem ls = parse(
+    Model ls = parseModel(
         withEnvironment("environment: process sleep 20\nenvironment: timeout 0.5\n", axiom + "\n"));
     auto start = std::chrono::steady_clock::now();
     std::string e = derivationError(ls, 0);

@@ -7,8 +7,11 @@
 #include <nlohmann/json.hpp>
 
 #include "graftal/graftal.hpp"
+#include "test_helpers.hpp"
 
 using namespace graftal;
+using graftal::testing::loadExample;
+using graftal::testing::parseModel;
 namespace fs = std::filesystem;
 
 namespace {
@@ -33,13 +36,15 @@ TEST(Examples, EveryExampleParsesDerivesAndDraws) {
     ASSERT_GE(files.size(), 40u);
     for (const auto& f : files) {
         SCOPED_TRACE(f.filename().string());
-        LSystem ls = loadLSystem(f);
+        ParseResult parsed = loadModel(f);
+        std::vector<Diagnostic> warnings = parsed.warnings();
+        EXPECT_TRUE(warnings.empty()) << warnings.front().toString();
+        Model ls = std::move(parsed).orThrow();
         ModuleString s = derive(ls);
         EXPECT_GT(s.size(), 0u);
         EXPECT_LT(s.size(), 20'000'000u) << "examples stay quick";
-        ModuleString drawn = applyHomomorphism(ls, s);
+        ModuleString drawn = applyHomomorphism(ls.lsystem, s);
         Scene scene = interpret(ls, drawn);
-        EXPECT_TRUE(ls.warnings.empty()) << ls.warnings.front().toString();
         bool drawsSomething = false;
         for (Symbol sym : drawn.symbols()) drawsSomething |= sym == 'F' || sym == '{';
         if (drawsSomething) {
@@ -56,14 +61,14 @@ TEST(Examples, MatchIndependentReference) {
     for (const auto& ex : all) {
         std::string file = ex["file"];
         SCOPED_TRACE(file);
-        LSystem ls = loadLSystem(fs::path(GRAFTAL_EXAMPLES_DIR) / file);
+        Model ls = loadExample(fs::path(GRAFTAL_EXAMPLES_DIR) / file);
         for (const auto& st : ex["steps"]) {
             int n = st["n"];
             SCOPED_TRACE("n=" + std::to_string(n));
             ModuleString s = derive(ls, n);
             EXPECT_EQ(s.size(), st["modules"].get<std::size_t>());
             if (st.contains("string")) {
-                EXPECT_EQ(s.toString(ls.symbols), st["string"].get<std::string>());
+                EXPECT_EQ(s.toString(ls.lsystem.symbols), st["string"].get<std::string>());
             }
             if (st.contains("segments") || st.contains("bbox")) {
                 Scene scene = interpret(ls, s);

@@ -1,6 +1,7 @@
 // Small helpers shared by the tests: parse text, derive, print.
 #pragma once
 
+#include <filesystem>
 #include <string>
 
 #include "graftal/graftal.hpp"
@@ -11,6 +12,17 @@ inline LSystem parse(const std::string& text, const std::string& name = "test.l"
     ParseOptions o;
     o.fileName = name;
     return parseLSystem(text, o);
+}
+
+// The grammar and the view, for tests that draw.
+inline Model parseModel(const std::string& text, const std::string& name = "test.l") {
+    ParseOptions o;
+    o.fileName = name;
+    return graftal::parse(text, o).orThrow();
+}
+
+inline Model loadExample(const std::filesystem::path& path, ParseOptions options = {}) {
+    return loadModel(path, std::move(options)).orThrow();
 }
 
 inline std::string derived(const LSystem& ls, int steps) {

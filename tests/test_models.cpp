@@ -19,44 +19,46 @@
 #include "test_helpers.hpp"
 
 using namespace graftal;
+using graftal::testing::loadExample;
+using graftal::testing::parseModel;
 namespace fs = std::filesystem;
 
 namespace {
 
-LSystem example(const std::string& name, std::map<std::string, std::string> defines = {}) {
+Model example(const std::string& name, std::map<std::string, std::string> defines = {}) {
     ParseOptions o;
     o.defines = std::move(defines);
-    return loadLSystem(fs::path(GRAFTAL_EXAMPLES_DIR) / name, o);
+    return loadExample(fs::path(GRAFTAL_EXAMPLES_DIR) / name, o);
 }
 
-ModuleString deriveSeeded(const LSystem& ls, int n, std::uint64_t seed) {
+ModuleString deriveSeeded(const Model& ls, int n, std::uint64_t seed) {
     DerivationOptions o;
     o.seed = seed;
     return derive(ls, n, o);
 }
 
-std::string str(const LSystem& ls, int n) {
-    return derive(ls, n).toString(ls.symbols);
+std::string str(const Model& ls, int n) {
+    return derive(ls, n).toString(ls.lsystem.symbols);
 }
 
 // The string without the turtle's turn/roll/pitch symbols (with or without a parameter):
 // what the book prints for an example that adds turns to draw its branches apart.
-std::string stripTurtle(const LSystem& ls, const ModuleString& s) {
+std::string stripTurtle(const Model& ls, const ModuleString& s) {
     ModuleString out;
     for (std::size_t i = 0; i < s.size(); ++i) {
         Symbol sym = s.symbol(i);
         if (sym < 128 && sym != 0 && std::strchr("+-/\\&^|", static_cast<char>(sym))) continue;
         out.push(sym, s.params(i));
     }
-    return out.toString(ls.symbols);
+    return out.toString(ls.lsystem.symbols);
 }
 
-std::string stripped(const LSystem& ls, int n) {
+std::string stripped(const Model& ls, int n) {
     return stripTurtle(ls, derive(ls, n));
 }
 
-Symbol sym(const LSystem& ls, const char* name) {
-    int id = ls.symbols.find(name);
+Symbol sym(const Model& ls, const char* name) {
+    int id = ls.lsystem.symbols.find(name);
     EXPECT_GE(id, 0) << name;
     return static_cast<Symbol>(id);
 }
@@ -104,14 +106,16 @@ Symbol mainTerminal(const ModuleString& s, std::initializer_list<Symbol> of) {
 
 void expectDrawsAndIsSmall(const std::string& file) {
     SCOPED_TRACE(file);
-    LSystem ls = example(file);
-    EXPECT_TRUE(ls.warnings.empty()) << ls.warnings.front().toString();
+    ParseResult parsed = loadModel(fs::path(GRAFTAL_EXAMPLES_DIR) / file);
+    std::vector<Diagnostic> warnings = parsed.warnings();
+    EXPECT_TRUE(warnings.empty()) << warnings.front().toString();
+    Model ls = std::move(parsed).orThrow();
     auto t0 = std::chrono::steady_clock::now();
     ModuleString s = derive(ls);
     double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     EXPECT_LT(s.size(), 2'000'000u);
     EXPECT_LT(seconds, 5.0) << "the examples derive in well under a second";
-    Scene scene = interpret(ls, applyHomomorphism(ls, s));
+    Scene scene = interpret(ls, applyHomomorphism(ls.lsystem, s));
     EXPECT_GT(scene.segments.size() + scene.polygonCount(), 0u) << "draws a picture";
 }
 
@@ -158,7 +162,7 @@ TEST(Models, EveryModelFileDrawsAndStaysSmall) {
 // 3.3.1 Racemes: the lily-of-the-valley's printed developmental sequence.
 
 TEST(Models, LilyOfTheValleyPrintedSequence) {
-    LSystem ls = example("fig3.7-lily-of-the-valley.l");
+    Model ls = example("fig3.7-lily-of-the-valley.l");
     // LSFP, 3.3.1: A, I[IF0]A, I[IF1]I[IF0]A, I[IF2]I[IF1]I[IF0]A,
     // I[IF3]I[IF2]I[IF1]I[IF0]A (F_i is F(i)).
     EXPECT_EQ(str(ls, 0), "A");
@@ -173,13 +177,13 @@ TEST(Models, LilyOfTheValleyPrintedSequence) {
         EXPECT_EQ(str(ls, n), want + "A") << n;
     }
     // The homomorphism draws: the book's flower F(i) becomes a polygon, I a segment.
-    std::string drawn = applyHomomorphism(ls, derive(ls, 1)).toString(ls.symbols);
+    std::string drawn = applyHomomorphism(ls.lsystem, derive(ls, 1)).toString(ls.lsystem.symbols);
     EXPECT_EQ(drawn.find("F(0)"), std::string::npos);
     EXPECT_NE(drawn.find('{'), std::string::npos);
 }
 
 TEST(Models, SiggraphRacemeWithElongatingInternodesPrintedSequence) {
-    LSystem ls = example("siggraph-raceme-elongating-internodes.l");
+    Model ls = example("siggraph-raceme-elongating-internodes.l");
     // the SIGGRAPH '88 paper, 4.1: A, I0[I0F0]A, I1[I1F1]I0[I0F0]A, I2[I2F2]I1[I1F1]I0[I0F0]A,
     // I3[I3F3]I2[I2F2]I1[I1F1]I0[I0F0]A
     EXPECT_EQ(str(ls, 0), "A");
@@ -190,7 +194,7 @@ TEST(Models, SiggraphRacemeWithElongatingInternodesPrintedSequence) {
 }
 
 TEST(Models, FernHasNineFrondsGrowingSubapically) {
-    LSystem ls = example("fig3.8-fern.l");
+    Model ls = example("fig3.8-fern.l");
     std::string frond0 = "[A]", frond1 = "[I(0)[B]A]", frond2 = "[I(1)[I(0)[L(0)][L(0)]B]I(0)[B]A]";
     auto times9 = [](const std::string& s) {
         std::string r;
@@ -211,7 +215,7 @@ TEST(Models, FernHasNineFrondsGrowingSubapically) {
 // 3.3.2 Lychnis coronaria: the delays of the two lateral apices.
 
 TEST(Models, LychnisLateralApicesBranchAfterEightAndFourSteps) {
-    LSystem ls = example("fig3.9-lychnis-coronaria.l");
+    Model ls = example("fig3.9-lychnis-coronaria.l");
     EXPECT_EQ(stripped(ls, 0), "A(7)");
     EXPECT_EQ(stripped(ls, 1), "I[A(0)][A(4)]IF(0)");
     EXPECT_EQ(stripped(ls, 4), "I[A(3)][A(7)]IF(3)");
@@ -230,7 +234,7 @@ TEST(Models, LychnisLateralApicesBranchAfterEightAndFourSteps) {
     EXPECT_EQ(branchStep(1), 4);
     EXPECT_EQ(stripped(ls, 9), "I[I[A(0)][A(4)]IF(0)][I[A(4)][I[A(0)][A(4)]IF(0)]IF(4)]IF(8)");
     // The SIGGRAPH version has leaves and elongating internodes, same delays.
-    LSystem sg = example("siggraph-lychnis-coronaria.l");
+    Model sg = example("siggraph-lychnis-coronaria.l");
     EXPECT_EQ(stripped(sg, 1), "I(0)[L(0)][L(0)][A(0)][A(4)]I(0)F(0)");
     EXPECT_EQ(stripped(sg, 5),
               "I(4)[L(4)][L(4)][A(4)][I(0)[L(0)][L(0)][A(0)][A(4)]I(0)F(0)]I(4)F(4)");
@@ -241,11 +245,11 @@ TEST(Models, LychnisLateralApicesBranchAfterEightAndFourSteps) {
 
 namespace {
 // The step at which the apex is B for the first time (-1: never up to `maxSteps`).
-int switchStep(const LSystem& ls, int maxSteps, std::optional<std::uint64_t> seed = {}) {
+int switchStep(const Model& ls, int maxSteps, std::optional<std::uint64_t> seed = {}) {
     DerivationOptions o;
     o.seed = seed;
     Derivation d(ls, o);
-    Symbol b = static_cast<Symbol>(ls.symbols.find("B"));
+    Symbol b = static_cast<Symbol>(ls.lsystem.symbols.find("B"));
     for (int n = 0; n <= maxSteps; ++n) {
         if (n > 0) d.step();
         if (countOf(d.current(), b) > 0) return n;
@@ -257,7 +261,7 @@ int switchStep(const LSystem& ls, int maxSteps, std::optional<std::uint64_t> see
 TEST(Models, CapsellaDelaySwitchesAfterCountingTheLeaves) {
     for (int leaves : {3, 5, 8}) {
         SCOPED_TRACE(leaves);
-        LSystem ls = example("fig3.10-capsella-delay.l", {{"NLEAVES", std::to_string(leaves)}});
+        Model ls = example("fig3.10-capsella-delay.l", {{"NLEAVES", std::to_string(leaves)}});
         // A(0) ... A(n-1) make n leaves staying vegetative; A(n) makes one more and
         // becomes B: the switch is at step n+1, whatever happens.
         EXPECT_EQ(switchStep(ls, 30), leaves + 1);
@@ -268,7 +272,7 @@ TEST(Models, CapsellaDelaySwitchesAfterCountingTheLeaves) {
         EXPECT_EQ(countOf(later, 'L'), static_cast<std::size_t>(leaves + 1)) << "no more leaves";
         EXPECT_EQ(countOf(later, 'F'), 5u) << "one flower per step after the switch";
     }
-    LSystem ls = example("fig3.10-capsella-delay.l");
+    Model ls = example("fig3.10-capsella-delay.l");
     EXPECT_EQ(str(ls, 0), "A(0)");
     EXPECT_EQ(str(ls, 2), "I[L(1)]I[L(0)]A(2)");
     EXPECT_EQ(str(ls, 6), "I[L(5)]I[L(4)]I[L(3)]I[L(2)]I[L(1)]I[L(0)]B");
@@ -278,22 +282,22 @@ TEST(Models, CapsellaDelaySwitchesAfterCountingTheLeaves) {
 TEST(Models, CapsellaTableSwitchesAtTheScheduledStep) {
     for (int days : {2, 6, 9}) {
         SCOPED_TRACE(days);
-        LSystem ls = example("fig3.10-capsella-table.l", {{"DAYS", std::to_string(days)}});
+        Model ls = example("fig3.10-capsella-table.l", {{"DAYS", std::to_string(days)}});
         // Table 1 for `days` steps, table 2 from step days+1 on: its p1 A -> I[L0]B.
         EXPECT_EQ(switchStep(ls, 30), days + 1);
-        EXPECT_EQ(ls.tableForStep(days), 0);
-        EXPECT_EQ(ls.tableForStep(days + 1), 1);
+        EXPECT_EQ(ls.lsystem.tableForStep(days), 0);
+        EXPECT_EQ(ls.lsystem.tableForStep(days + 1), 1);
         ModuleString before = derive(ls, days);
         EXPECT_EQ(before.symbol(before.size() - 1), 'A');
         EXPECT_EQ(countOf(derive(ls, days + 1), 'F'), 0u);
         EXPECT_EQ(countOf(derive(ls, days + 2), 'F'), 1u);
     }
-    LSystem ls = example("fig3.10-capsella-table.l");
+    Model ls = example("fig3.10-capsella-table.l");
     EXPECT_EQ(str(ls, 7), "I[L(6)]I[L(5)]I[L(4)]I[L(3)]I[L(2)]I[L(1)]I[L(0)]B");
 }
 
 TEST(Models, CapsellaStochasticSwitchVariesWithTheSeedOnly) {
-    LSystem ls = example("fig3.10-capsella-stochastic.l");
+    Model ls = example("fig3.10-capsella-stochastic.l");
     std::set<int> steps;
     for (std::uint64_t seed = 1; seed <= 30; ++seed) {
         int s = switchStep(ls, 60, seed);
@@ -334,14 +338,14 @@ std::set<int> flowerAxisOrders(const ModuleString& s) {
 
 TEST(Models, CompoundRacemeOfOrderN) {
     {
-        LSystem ls = example("sec3.3.4-compound-raceme.l");  // order 2
+        Model ls = example("sec3.3.4-compound-raceme.l");  // order 2
         EXPECT_EQ(stripped(ls, 1), "I[A(1)]A(0)");
         EXPECT_EQ(stripped(ls, 2), "I[I[A(2)]A(1)]I[A(1)]A(0)");
         EXPECT_EQ(stripped(ls, 3), "I[I[I[IF]A(2)]I[A(2)]A(1)]I[I[A(2)]A(1)]I[A(1)]A(0)");
     }
     for (int order = 0; order <= 4; ++order) {
         SCOPED_TRACE(order);
-        LSystem ls = example("sec3.3.4-compound-raceme.l", {{"ORDER", std::to_string(order)}});
+        Model ls = example("sec3.3.4-compound-raceme.l", {{"ORDER", std::to_string(order)}});
         // The first flower appears after order+1 steps, and every flower is borne by an
         // axis of order n: none on the axes of lower order.
         EXPECT_EQ(countOf(derive(ls, order), 'F'), 0u);
@@ -350,14 +354,14 @@ TEST(Models, CompoundRacemeOfOrderN) {
         EXPECT_EQ(flowerAxisOrders(s), std::set<int>{order});
     }
     // Order 0 is the simple raceme of 3.3.1 (with A(0) for A and a plain F).
-    LSystem r = example("sec3.3.4-compound-raceme.l", {{"ORDER", "0"}});
+    Model r = example("sec3.3.4-compound-raceme.l", {{"ORDER", "0"}});
     EXPECT_EQ(stripped(r, 3), "I[IF]I[IF]I[IF]A(0)");
 }
 
 TEST(Models, CompoundRacemeWithTerminalRacemesAfterTheSwitch) {
-    LSystem ls = example("sec3.3.4-compound-raceme-terminal.l");  // order 2, switch after 4
+    Model ls = example("sec3.3.4-compound-raceme-terminal.l");  // order 2, switch after 4
     // Before the switch: as the plain compound raceme.
-    LSystem plain = example("sec3.3.4-compound-raceme.l");
+    Model plain = example("sec3.3.4-compound-raceme.l");
     for (int n = 0; n <= 4; ++n) EXPECT_EQ(stripped(ls, n), stripped(plain, n)) << n;
     // Step 5 uses p1': every apex of order < n makes a flower and becomes A(n).
     ModuleString s = derive(ls, 5);
@@ -403,7 +407,7 @@ struct Measured {
     int mainApex = -1;
 };
 
-Measured measureFlowering(const LSystem& ls, int steps) {
+Measured measureFlowering(const Model& ls, int steps) {
     Measured r;
     Symbol F = 'F', J = 'J', A = 'A';
     Derivation d(ls);
@@ -429,7 +433,7 @@ Measured measureFlowering(const LSystem& ls, int steps) {
 
 void checkSignalModel(const std::string& file, SignalModel p, int steps) {
     SCOPED_TRACE(file);
-    LSystem ls = example(file);
+    Model ls = example(file);
     Measured r = measureFlowering(ls, steps);
     ASSERT_GE(r.T.size(), 8u);
     double slope = (p.u * p.n - p.v * p.m) / double(p.n - p.v);
@@ -472,7 +476,7 @@ TEST(Models, AcropetalSignalFloweringTimesMatchTheBook) {
     EXPECT_EQ(r.mainApex, 24);
     // The figure's derivation lengths 15 - 19 - 21 - 23 - 26: no flower at 15, the
     // first at 19, all at 24.
-    LSystem ls = example("fig3.14a-acropetal-signal.l");
+    Model ls = example("fig3.14a-acropetal-signal.l");
     EXPECT_EQ(countOf(derive(ls, 15), 'F'), 0u);
     EXPECT_GT(countOf(derive(ls, 19), 'F'), 0u);
     EXPECT_EQ(countOf(derive(ls, 26), 'B') + countOf(derive(ls, 26), 'A'), 0u);
@@ -496,11 +500,11 @@ TEST(Models, SignalModelsWithOtherDelays) {
     // The exact discrete formula holds for other delays too (-D DELAY=...).
     for (int d : {6, 9, 14}) {
         SCOPED_TRACE(d);
-        LSystem a = example("fig3.14a-acropetal-signal.l", {{"DELAY", std::to_string(d)}});
+        Model a = example("fig3.14a-acropetal-signal.l", {{"DELAY", std::to_string(d)}});
         Measured ra = measureFlowering(a, 3 * d + 4);
         SignalModel pa{2, 3, 1, 1, d};
         for (std::size_t i = 0; i < ra.T.size(); ++i) EXPECT_EQ(ra.T[i], pa.exactT(int(i) + 1));
-        LSystem b = example("fig3.14b-basipetal-flowering.l", {{"DELAY", std::to_string(d)}});
+        Model b = example("fig3.14b-basipetal-flowering.l", {{"DELAY", std::to_string(d)}});
         Measured rb = measureFlowering(b, 3 * d + 4);
         SignalModel pb{2, 5, 1, 3, d};
         for (std::size_t i = 0; i < rb.T.size(); ++i) EXPECT_EQ(rb.T[i], pb.exactT(int(i) + 1));
@@ -508,7 +512,7 @@ TEST(Models, SignalModelsWithOtherDelays) {
 }
 
 TEST(Models, SignalModelSignalMovesOneInternodePerStepWhenUIsOne) {
-    LSystem ls = example("fig3.14a-acropetal-signal.l");
+    Model ls = example("fig3.14a-acropetal-signal.l");
     EXPECT_EQ(str(ls, 0), "D(0)A(0)");
     EXPECT_EQ(str(ls, 2), "D(2)I[+B(0)]A(0)");
     // D(11) -> S(0) at step 12; the signal is right after the first internode at 13,
@@ -523,7 +527,7 @@ TEST(Models, SignalModelSignalMovesOneInternodePerStepWhenUIsOne) {
 // 3.5.3 Mycelis muralis (written from the description): the sequence of events.
 
 TEST(Models, MycelisSignalsReleaseAndFlowerTheLateralsFromTheTopDown) {
-    LSystem ls = example("fig3.15-mycelis-muralis.l");
+    Model ls = example("fig3.15-mycelis-muralis.l");
     Symbol X = sym(ls, "X"), A = sym(ls, "A"), F = 'F', D = sym(ls, "D");
     int mainFlower = -1;
     std::vector<int> released, flowered;
@@ -582,47 +586,49 @@ TEST(Models, MycelisSignalsReleaseAndFlowerTheLateralsFromTheTopDown) {
 // 3.6 Variation: stochastic bushes and the flower field.
 
 TEST(Models, StochasticBushesDifferBetweenSeeds) {
-    LSystem ls = example("fig3.16-stochastic-bush.l");
+    Model ls = example("fig3.16-stochastic-bush.l");
     std::set<std::string> all;
     for (std::uint64_t seed = 1; seed <= 8; ++seed)
-        all.insert(deriveSeeded(ls, 5, seed).toString(ls.symbols));
+        all.insert(deriveSeeded(ls, 5, seed).toString(ls.lsystem.symbols));
     EXPECT_EQ(all.size(), 8u);
     // Every F is rewritten by one of the three productions: after one step the string
     // is one of the three successors.
     std::set<std::string> one;
     for (std::uint64_t seed = 0; seed < 40; ++seed)
-        one.insert(deriveSeeded(ls, 1, seed).toString(ls.symbols));
+        one.insert(deriveSeeded(ls, 1, seed).toString(ls.lsystem.symbols));
     EXPECT_EQ(one, (std::set<std::string>{"F[+F]F[-F]F", "F[+F]F", "F[-F]F"}));
 }
 
 TEST(Models, FlowerFieldSixteenSeedsSixteenPlants) {
-    LSystem ls = example("fig3.17-flower-field.l");
+    Model ls = example("fig3.17-flower-field.l");
     std::set<std::string> field;
     for (std::uint64_t seed = 1; seed <= 16; ++seed) {
-        std::string s = deriveSeeded(ls, ls.derivationLength, seed).toString(ls.symbols);
+        std::string s =
+            deriveSeeded(ls, ls.lsystem.derivationLength, seed).toString(ls.lsystem.symbols);
         field.insert(s);
-        EXPECT_EQ(deriveSeeded(ls, ls.derivationLength, seed).toString(ls.symbols), s)
+        EXPECT_EQ(deriveSeeded(ls, ls.lsystem.derivationLength, seed).toString(ls.lsystem.symbols),
+                  s)
             << "same seed, same plant: " << seed;
     }
     EXPECT_EQ(field.size(), 16u);
     // The deterministic part is that of Fig 3.4: the first step has no seg yet.
-    LSystem fig34 = example("fig3.4-plant.l");
+    Model fig34 = example("fig3.4-plant.l");
     EXPECT_EQ(str(ls, 1), str(fig34, 1));
 }
 
 TEST(Models, SiggraphFlowerFieldStochasticInternodes) {
-    LSystem ls = example("siggraph-flower-field-stochastic-internodes.l");
+    Model ls = example("siggraph-flower-field-stochastic-internodes.l");
     EXPECT_EQ(str(ls, 1), "IIIK");
     std::set<std::string> field;
     for (std::uint64_t seed = 1; seed <= 16; ++seed)
-        field.insert(deriveSeeded(ls, 5, seed).toString(ls.symbols));
+        field.insert(deriveSeeded(ls, 5, seed).toString(ls.lsystem.symbols));
     EXPECT_GE(field.size(), 14u);
     // Every internode becomes I, II or I[L]L.
     std::set<std::string> one;
-    LSystem single = graftal::testing::parse(
+    Model single = graftal::testing::parseModel(
         "Lsystem: 1\naxiom: I\nI --> I : 1/3\nI --> II : 1/3\nI --> I[L]L : 1/3\nendlsystem\n");
     for (std::uint64_t seed = 0; seed < 40; ++seed)
-        one.insert(deriveSeeded(single, 1, seed).toString(single.symbols));
+        one.insert(deriveSeeded(single, 1, seed).toString(single.lsystem.symbols));
     EXPECT_EQ(one, (std::set<std::string>{"I", "II", "I[L]L"}));
 }
 
@@ -630,58 +636,60 @@ TEST(Models, SiggraphFlowerFieldStochasticInternodes) {
 // The SIGGRAPH '88 paper's L-systems (a)-(d), (a'), (c').
 
 TEST(Models, SiggraphBranchingEverywhere) {
-    LSystem a = example("siggraph-a-branching-everywhere.l");
+    Model a = example("siggraph-a-branching-everywhere.l");
     EXPECT_EQ(str(a, 0), "S");
     EXPECT_EQ(str(a, 1), "S[S]S[S]S");
     EXPECT_EQ(str(a, 2), "S[S]S[S]S[S[S]S[S]S]S[S]S[S]S[S[S]S[S]S]S[S]S[S]S");
-    LSystem a1 = example("siggraph-a-prime-branching-everywhere.l");
+    Model a1 = example("siggraph-a-prime-branching-everywhere.l");
     EXPECT_EQ(str(a1, 1), "S[-S]S[+S]S");
     EXPECT_EQ(stripTurtle(a1, derive(a1, 3)), str(a, 3));
     EXPECT_DOUBLE_EQ(a1.view.angleDegrees, 27.5);
 }
 
 TEST(Models, SiggraphSubapicalGrowth) {
-    LSystem b = example("siggraph-b-subapical.l");
+    Model b = example("siggraph-b-subapical.l");
     EXPECT_EQ(stripped(b, 0), "A");
     EXPECT_EQ(stripped(b, 1), "S[A]S[A]A");
     EXPECT_EQ(stripped(b, 2), "SS[S[A]S[A]A]SS[S[A]S[A]A]S[A]S[A]A");
     // the paper's (b) itself, without the turns
-    LSystem plain =
-        graftal::testing::parse("Lsystem: 1\naxiom: A\nA --> S[A]S[A]A\nS --> SS\nendlsystem\n");
+    Model plain = graftal::testing::parseModel(
+        "Lsystem: 1\naxiom: A\nA --> S[A]S[A]A\nS --> SS\nendlsystem\n");
     for (int n = 0; n <= 5; ++n)
-        EXPECT_EQ(stripped(b, n), graftal::testing::derived(plain, n)) << n;
+        EXPECT_EQ(stripped(b, n), graftal::testing::derived(plain.lsystem, n)) << n;
 }
 
 TEST(Models, SiggraphSignalPropagation) {
     // (c), the topological system (LSFP 3.5.1; lost from the SIGGRAPH '88 paper's text)
-    LSystem c =
-        graftal::testing::parse("Lsystem: 1\naxiom: J[I]I[I]I[I]I\nJ < I --> J\nendlsystem\n");
-    EXPECT_EQ(graftal::testing::derived(c, 1), "J[J]J[I]I[I]I");
-    EXPECT_EQ(graftal::testing::derived(c, 2), "J[J]J[J]J[I]I");
-    EXPECT_EQ(graftal::testing::derived(c, 3), "J[J]J[J]J[J]J");
+    Model c =
+        graftal::testing::parseModel("Lsystem: 1\naxiom: J[I]I[I]I[I]I\nJ < I --> J\nendlsystem\n");
+    EXPECT_EQ(graftal::testing::derived(c.lsystem, 1), "J[J]J[I]I[I]I");
+    EXPECT_EQ(graftal::testing::derived(c.lsystem, 2), "J[J]J[J]J[I]I");
+    EXPECT_EQ(graftal::testing::derived(c.lsystem, 3), "J[J]J[J]J[J]J");
     // (c'), as printed: the same with turns, ignored in the context
-    LSystem c1 = example("siggraph-c-prime-acropetal-signal.l");
+    Model c1 = example("siggraph-c-prime-acropetal-signal.l");
     EXPECT_EQ(str(c1, 0), "J[+I]I[-I]I[+I]I");
     EXPECT_EQ(str(c1, 1), "J[+J]J[-I]I[+I]I");
     EXPECT_EQ(str(c1, 2), "J[+J]J[-J]J[+I]I");
     EXPECT_EQ(str(c1, 3), "J[+J]J[-J]J[+J]J");
-    for (int n = 0; n <= 3; ++n) EXPECT_EQ(stripped(c1, n), graftal::testing::derived(c, n));
+    for (int n = 0; n <= 3; ++n)
+        EXPECT_EQ(stripped(c1, n), graftal::testing::derived(c.lsystem, n));
     // (d): the basipetal signal moves down the main axis only
-    LSystem d = example("siggraph-d-basipetal-signal.l");
+    Model d = example("siggraph-d-basipetal-signal.l");
     EXPECT_EQ(stripped(d, 0), "I[I]I[I]I[I]J");
     EXPECT_EQ(stripped(d, 1), "I[I]I[I]J[I]J");
     EXPECT_EQ(stripped(d, 2), "I[I]J[I]J[I]J");
     EXPECT_EQ(stripped(d, 3), "J[I]J[I]J[I]J");
-    LSystem dplain =
-        graftal::testing::parse("Lsystem: 1\naxiom: I[I]I[I]I[I]J\nI > J --> J\nendlsystem\n");
-    for (int n = 0; n <= 3; ++n) EXPECT_EQ(stripped(d, n), graftal::testing::derived(dplain, n));
+    Model dplain =
+        graftal::testing::parseModel("Lsystem: 1\naxiom: I[I]I[I]I[I]J\nI > J --> J\nendlsystem\n");
+    for (int n = 0; n <= 3; ++n)
+        EXPECT_EQ(stripped(d, n), graftal::testing::derived(dplain.lsystem, n));
 }
 
 // ---------------------------------------------------------------------------------------
 // The lecture notes' examples (the L-systems lecture notes).
 
 TEST(Models, LectureParametricPlantPrintedDerivation) {
-    LSystem ls = example("lecture-parametric-plant.l");
+    Model ls = example("lecture-parametric-plant.l");
     // A(0) => FA(1) => F[-L]FA(2) => F[-L]F[+L]FA(3) => F[-L]F[+L]FB
     EXPECT_EQ(str(ls, 0), "A(0)");
     EXPECT_EQ(str(ls, 1), "FA(1)");
@@ -692,26 +700,26 @@ TEST(Models, LectureParametricPlantPrintedDerivation) {
 }
 
 TEST(Models, LectureStochasticParametricContextExample) {
-    LSystem ls = example("lecture-stochastic-parametric-context.l");
+    Model ls = example("lecture-stochastic-parametric-context.l");
     // "A(1)B(3)A(5) => A(2)B(6)[A(3)]B(4)" with the file's seed
     EXPECT_EQ(str(ls, 0), "A(1)B(3)A(5)");
     EXPECT_EQ(str(ls, 1), "A(2)B(6)[A(3)]B(4)");
     // Every seed gives one of the four possible first steps, and all four occur.
     std::set<std::string> outcomes;
     for (std::uint64_t seed = 0; seed < 60; ++seed)
-        outcomes.insert(deriveSeeded(ls, 1, seed).toString(ls.symbols));
+        outcomes.insert(deriveSeeded(ls, 1, seed).toString(ls.lsystem.symbols));
     EXPECT_EQ(outcomes, (std::set<std::string>{"A(2)B(6)[A(3)]B(4)", "A(2)B(6)[A(3)]A(6)",
                                                "B(0)B(6)[A(3)]B(4)", "B(0)B(6)[A(3)]A(6)"}));
 }
 
 TEST(Models, LectureMonopodialAndDichotomicBranching) {
     // The notes' "iteration k" is derivation step k-1.
-    LSystem mono = example("lecture-monopodial-branching.l");
+    Model mono = example("lecture-monopodial-branching.l");
     EXPECT_EQ(stripped(mono, 0), "0");
     EXPECT_EQ(stripped(mono, 1), "1[0]0");
     EXPECT_EQ(stripped(mono, 2), "1[1[0]0]1[0]0");
     EXPECT_EQ(stripped(mono, 3), "1[1[1[0]0]1[0]0]1[1[0]0]1[0]0");
-    LSystem dicho = example("lecture-dichotomic-branching.l");
+    Model dicho = example("lecture-dichotomic-branching.l");
     EXPECT_EQ(stripped(dicho, 0), "0");
     EXPECT_EQ(stripped(dicho, 1), "1[0][0]");
     EXPECT_EQ(stripped(dicho, 2), "1[1[0][0]][1[0][0]]");
@@ -724,17 +732,17 @@ TEST(Models, LectureMonopodialAndDichotomicBranching) {
 TEST(Models, BagOfCandiesUsesTableOneForNMinusTwoSteps) {
     for (int n : {3, 4, 5}) {
         SCOPED_TRACE(n);
-        LSystem ls = example("fig6.5-bag-of-candies.l", {{"N", std::to_string(n)}});
-        EXPECT_EQ(ls.derivationLength, n);
-        for (int step = 1; step <= n - 2; ++step) EXPECT_EQ(ls.tableForStep(step), 0);
-        EXPECT_EQ(ls.tableForStep(n - 1), 1);
-        EXPECT_EQ(ls.tableForStep(n), 1);
+        Model ls = example("fig6.5-bag-of-candies.l", {{"N", std::to_string(n)}});
+        EXPECT_EQ(ls.lsystem.derivationLength, n);
+        for (int step = 1; step <= n - 2; ++step) EXPECT_EQ(ls.lsystem.tableForStep(step), 0);
+        EXPECT_EQ(ls.lsystem.tableForStep(n - 1), 1);
+        EXPECT_EQ(ls.lsystem.tableForStep(n), 1);
         ModuleString before = derive(ls, n - 2);
         EXPECT_EQ(countOf(before, 'A') + countOf(before, 'B'), 0u);
         ModuleString last = derive(ls, n);
         EXPECT_EQ(countOf(last, 'X') + countOf(last, 'A') + countOf(last, 'B'), 0u);
     }
-    LSystem ls = example("fig6.5-bag-of-candies.l");
+    Model ls = example("fig6.5-bag-of-candies.l");
     EXPECT_EQ(str(ls, 1), "-XFX--XFX--XFX--XFX");
     EXPECT_EQ(str(ls, 2).substr(0, 11), "-BFA--BFAFB");
 }

@@ -16,18 +16,21 @@
 #include "graftal/mesh.hpp"
 #include "graftal/render3d.hpp"
 #include "graftal/surface.hpp"
+#include "test_helpers.hpp"
 
 using namespace graftal;
+using graftal::testing::loadExample;
+using graftal::testing::parseModel;
 namespace fs = std::filesystem;
 
 namespace {
 
-LSystem example3d(const std::string& name) {
-    return loadLSystem(fs::path(GRAFTAL_EXAMPLES_DIR) / name);
+Model example3d(const std::string& name) {
+    return loadExample(fs::path(GRAFTAL_EXAMPLES_DIR) / name);
 }
 
-Scene sceneOf(const LSystem& ls) {
-    return interpret(ls, applyHomomorphism(ls, derive(ls)));
+Scene sceneOf(const Model& ls) {
+    return interpret(ls, applyHomomorphism(ls.lsystem, derive(ls)));
 }
 
 Scene sceneOf(const std::string& name) {
@@ -93,7 +96,7 @@ TEST(Models3d, EveryExampleIs3DAndMeshes) {
     SurfaceLibrary lib = SurfaceLibrary::builtin();
     for (const std::string& name : kExamples3d) {
         SCOPED_TRACE(name);
-        LSystem ls = example3d(name);
+        Model ls = example3d(name);
         Scene scene = sceneOf(ls);
         EXPECT_TRUE(scene.is3D);
         EXPECT_LT(scene.segments.size(), 1000000u);
@@ -108,7 +111,7 @@ TEST(Models3d, TropismBendsAsInFig35) {
     Shape b = shapeOf(sceneOf("fig3.5b-tropism.l"));
     Shape c = shapeOf(sceneOf("fig3.5c-tropism.l"));
     // The same plant without tropism, for reference.
-    LSystem none = example3d("fig3.5a-tropism.l");
+    Model none = example3d("fig3.5a-tropism.l");
     none.view.elasticity = 0;
     Shape zero = shapeOf(sceneOf(none));
     // T points up: e_b > e_a > 0 bend the twigs up, b more than a; e_c < 0 bends them down.
@@ -158,9 +161,9 @@ TEST(Models3d, FlowerFieldHasSixteenDifferentPlants) {
 }
 
 TEST(Models3d, CordateLeafUsesDeclaredEdgeMarkers) {
-    LSystem ls = example3d("fig4.5-cordate-leaf.l");
-    EXPECT_GE(ls.symbols.find("E1"), 0);
-    EXPECT_GE(ls.symbols.find("E2"), 0);
+    Model ls = example3d("fig4.5-cordate-leaf.l");
+    EXPECT_GE(ls.lsystem.symbols.find("E1"), 0);
+    EXPECT_GE(ls.lsystem.symbols.find("E2"), 0);
     Scene s = sceneOf(ls);
     EXPECT_EQ(s.polygonCount(), 10u);  // two halves for each of five leaves
 }

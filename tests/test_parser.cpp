@@ -3,11 +3,13 @@
 #include "test_helpers.hpp"
 
 using namespace graftal;
+using graftal::testing::loadExample;
 using graftal::testing::parse;
 using graftal::testing::parseError;
+using graftal::testing::parseModel;
 
 TEST(Parser, ReadsTheCpfgForm) {
-    LSystem ls = parse(
+    Model m = parseModel(
         "/* Koch island */\n"
         "#define N 3\n"
         "Lsystem: 1\n"
@@ -16,17 +18,18 @@ TEST(Parser, ReadsTheCpfgForm) {
         "Axiom: F+F+F+F\n"
         "F --> F+F-F-FF+F+F-F\n"
         "endlsystem\n");
+    const LSystem& ls = m.lsystem;
     EXPECT_EQ(ls.derivationLength, 3);
-    EXPECT_DOUBLE_EQ(ls.view.angleDegrees, 90);
+    EXPECT_DOUBLE_EQ(m.view.angleDegrees, 90);
     EXPECT_FALSE(ls.legacyPfg);
-    EXPECT_FALSE(ls.view.clockwisePlus);
+    EXPECT_FALSE(m.view.clockwisePlus);
     EXPECT_EQ(ls.axiom.toString(ls.symbols), "F+F+F+F");
     ASSERT_EQ(ls.productions.size(), 1u);
     EXPECT_EQ(ls.productions[0].successor.size(), 14u);
 }
 
 TEST(Parser, AFileWithoutLsystemHeaderIsAPfgDataFile) {
-    LSystem ls = parse(
+    Model m = parseModel(
         "derivation length: 30\n"
         "angle factor: 16\n"
         "scale factor: 100\n"
@@ -34,9 +37,10 @@ TEST(Parser, AFileWithoutLsystemHeaderIsAPfgDataFile) {
         "ignore: +-F\n"
         "0 < 0 > 0 --> 0\n"
         "* < + > * --> -\n");
+    const LSystem& ls = m.lsystem;
     EXPECT_TRUE(ls.legacyPfg);
-    EXPECT_TRUE(ls.view.clockwisePlus);
-    EXPECT_DOUBLE_EQ(ls.view.angleDegrees, 22.5);
+    EXPECT_TRUE(m.view.clockwisePlus);
+    EXPECT_DOUBLE_EQ(m.view.angleDegrees, 22.5);
     EXPECT_TRUE(ls.ignored['+']);
     EXPECT_TRUE(ls.ignored['F']);
     EXPECT_FALSE(ls.ignored['0']);
@@ -108,10 +112,16 @@ TEST(Parser, ConsiderIsTheComplementOfIgnore) {
 }
 
 TEST(Parser, WarnsWhenAContextFreeProductionShadowsAContextSensitiveOne) {
-    LSystem ls = parse("Lsystem: 1\naxiom: ba\na --> c\nb < a --> b\nendlsystem\n");
-    ASSERT_EQ(ls.warnings.size(), 1u);
-    EXPECT_EQ(ls.warnings[0].location.line, 4);
-    EXPECT_NE(ls.warnings[0].message.find("line 3"), std::string::npos);
+    ParseOptions o;
+    o.fileName = "test.l";
+    ParseResult r = graftal::parse("Lsystem: 1\naxiom: ba\na --> c\nb < a --> b\nendlsystem\n", o);
+    ASSERT_TRUE(r.ok());
+    std::vector<Diagnostic> warnings = r.warnings();
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_EQ(warnings[0].location.line, 4);
+    EXPECT_EQ(warnings[0].location.endLine, 4);
+    EXPECT_EQ(warnings[0].location.endColumn, 12) << "the end of the production 'b < a --> b'";
+    EXPECT_NE(warnings[0].message.find("line 3"), std::string::npos);
 }
 
 TEST(ParserErrors, UnknownKeywordNamesTheKeyword) {

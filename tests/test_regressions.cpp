@@ -185,7 +185,7 @@ TEST(Regressions, ASeedBeyondSixtyFourBitsIsAnError) {
 TEST(Regressions, OutOfRangeColourIndicesAreClamped) {
     LSystem ls = graftal::testing::parse(
         "Lsystem: 1\naxiom: F;(-1)F;(70000)F,(2.7)F'(1e300)F\nendlsystem\n");
-    Scene s = interpret(ls, derive(ls, 0));
+    Scene s = interpret(ls, ViewSettings{}, derive(ls, 0));
     ASSERT_EQ(s.segments.size(), 5u);
     EXPECT_EQ(s.segments[1].color, 0);
     EXPECT_EQ(s.segments[2].color, 65535);
@@ -278,7 +278,8 @@ TEST(Regressions, SubtreeSummariesStayWithinTheMemoryLimit) {
     EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 0) << raw;
     EXPECT_EQ(readFile(png).substr(1, 3), "PNG");
     EXPECT_FALSE(streamedPictureIsSummarised(
-        graftal::testing::parse(readFile(regression("long-identity-derivation.l"))), 150000,
+        Model{graftal::testing::parse(readFile(regression("long-identity-derivation.l"))), {}},
+        150000,
         std::size_t(64) << 20));
 }
 
@@ -322,15 +323,17 @@ TEST(Regressions, APopOnAnEmptyTurtleStackIsAnError) {
     ls.axiom.push('F');
     ls.axiom.push(']');
     ls.axiom.push('F');
-    expectStackError([&] { interpret(ls, derive(ls, 0)); }, "interpret");
-    expectStackError([&] { interpretStreamed(ls, 0); }, "interpretStreamed");
-    expectStackError([&] { measureStreamed(ls, 0); }, "measureStreamed");
-    expectStackError([&] { measureModules(ls, ls.axiom); }, "measureModules");
+    const Model m{ls, {}};
+    expectStackError([&] { interpret(m, derive(ls, 0)); }, "interpret");
+    expectStackError([&] { interpretStreamed(m, 0); }, "interpretStreamed");
+    expectStackError([&] { measureStreamed(m, 0); }, "measureStreamed");
+    expectStackError([&] { measureModules(m, ls.axiom); }, "measureModules");
 
     // A homomorphism whose successor (changed after parsing) closes a branch never opened.
     LSystem h =
         graftal::testing::parse("Lsystem: 1\naxiom: FA\nhomomorphism\nA --> F\nendlsystem\n");
     h.homomorphism[0].successor.push_back(h.homomorphism[0].successor[0]);
     h.homomorphism[0].successor.back().symbol = ']';
-    expectStackError([&] { interpret(h, applyHomomorphism(h, derive(h, 0))); }, "homomorphism");
+    expectStackError([&] { interpret(h, ViewSettings{}, applyHomomorphism(h, derive(h, 0))); },
+                     "homomorphism");
 }

@@ -8,7 +8,9 @@
 #include "test_helpers.hpp"
 
 using namespace graftal;
+using graftal::testing::loadExample;
 using graftal::testing::parse;
+using graftal::testing::parseModel;
 
 namespace {
 
@@ -34,10 +36,10 @@ const char* kClasses[] = {
 
 TEST(Streaming, SameStringAsTheMaterialisedDerivation) {
     for (const char* text : kClasses) {
-        LSystem ls = parse(text);
+        Model ls = parseModel(text);
         for (int n : {0, 1, 4, 6}) {
             Collect c;
-            streamDerivation(ls, n, c);
+            streamDerivation(ls.lsystem, n, c);
             EXPECT_TRUE(c.s == derive(ls, n, {})) << text << " n=" << n;
         }
     }
@@ -45,7 +47,7 @@ TEST(Streaming, SameStringAsTheMaterialisedDerivation) {
 
 TEST(Streaming, SameGeometryAsTheMaterialisedDerivation) {
     for (const char* text : kClasses) {
-        LSystem ls = parse(text);
+        Model ls = parseModel(text);
         Scene a = interpret(ls, derive(ls, 6));
         Scene b = interpretStreamed(ls, 6);
         ASSERT_EQ(a.segments.size(), b.segments.size()) << text;
@@ -63,15 +65,15 @@ TEST(Streaming, SameGeometryAsTheMaterialisedDerivation) {
 }
 
 TEST(Streaming, RefusesLSystemsWithContext) {
-    LSystem ls = parse("Lsystem: 1\naxiom: ba\nb < a --> b\nendlsystem\n");
-    EXPECT_NE(streamingObstacle(ls).find("context"), std::string::npos);
+    Model ls = parseModel("Lsystem: 1\naxiom: ba\nb < a --> b\nendlsystem\n");
+    EXPECT_NE(streamingObstacle(ls.lsystem).find("context"), std::string::npos);
     Collect c;
-    EXPECT_THROW(streamDerivation(ls, 2, c), Error);
+    EXPECT_THROW(streamDerivation(ls.lsystem, 2, c), Error);
 }
 
 TEST(Streaming, StreamedPngEqualsTheMaterialisedPng) {
     graftal::testing::TempDir t;
-    LSystem ls = parse(kClasses[0]);
+    Model ls = parseModel(kClasses[0]);
     RenderOptions o;
     o.width = 200;
     o.height = 150;

@@ -13,7 +13,9 @@
 #include "turtle/subtree_summaries.hpp"
 
 using namespace graftal;
+using graftal::testing::loadExample;
 using graftal::testing::parse;
+using graftal::testing::parseModel;
 
 namespace {
 
@@ -39,7 +41,7 @@ std::vector<int> greens(const std::filesystem::path& png, int& width, int& heigh
 }  // namespace
 
 TEST(SubtreeSummaries, KochCurveSideMovesFourToTheStepStraightOn) {
-    LSystem ls = parse(kKoch);
+    Model ls = parseModel(kKoch);
     SubtreeSummaries sums(ls, 5);
     ASSERT_TRUE(sums.available());
     const SubtreeMotion& side = sums.motion('F', 0);
@@ -59,7 +61,7 @@ TEST(SubtreeSummaries, KochCurveSideMovesFourToTheStepStraightOn) {
 }
 
 TEST(SubtreeSummaries, MotionAndRadiusAgreeWithTheTurtle) {
-    LSystem ls = parse(kBush);
+    Model ls = parseModel(kBush);
     const int n = 6;
     SubtreeSummaries sums(ls, n);
     ASSERT_TRUE(sums.available());
@@ -85,24 +87,25 @@ TEST(SubtreeSummaries, MotionAndRadiusAgreeWithTheTurtle) {
 }
 
 TEST(SubtreeSummaries, UnavailableWhereAModuleDoesMoreThanMove) {
-    EXPECT_FALSE(SubtreeSummaries(parse("Lsystem: 1\naxiom: A(1)\nA(l) --> F(l)A(l*2)\n"
-                                        "endlsystem\n"),
+    EXPECT_FALSE(SubtreeSummaries(parseModel("Lsystem: 1\naxiom: A(1)\nA(l) --> F(l)A(l*2)\n"
+                                             "endlsystem\n"),
                                   4)
                      .available());
-    EXPECT_FALSE(SubtreeSummaries(parse("Lsystem: 1\naxiom: F\nF --> FF : 0.5\nF --> F : 0.5\n"
-                                        "endlsystem\n"),
+    EXPECT_FALSE(SubtreeSummaries(parseModel("Lsystem: 1\naxiom: F\nF --> FF : 0.5\nF --> F : 0.5\n"
+                                             "endlsystem\n"),
                                   4)
                      .available());
-    EXPECT_FALSE(SubtreeSummaries(parse("Lsystem: 1\naxiom: A\nA --> {F+F+F}A\nendlsystem\n"), 4)
-                     .available());
+    EXPECT_FALSE(
+        SubtreeSummaries(parseModel("Lsystem: 1\naxiom: A\nA --> {F+F+F}A\nendlsystem\n"), 4)
+            .available());
     // Modules that change the colour are kept out of summaries, not the whole system.
-    LSystem coloured = parse("Lsystem: 1\naxiom: A;B\nA --> FA\nB --> F;B\nendlsystem\n");
+    Model coloured = parseModel("Lsystem: 1\naxiom: A;B\nA --> FA\nB --> F;B\nendlsystem\n");
     SubtreeSummaries sums(coloured, 3);
     ASSERT_TRUE(sums.available());
     EXPECT_TRUE(sums.motion('A', 0).summarised);
     EXPECT_FALSE(sums.motion('B', 0).summarised);
     // Tables are fine: the summary of a module depends on the step it is in.
-    LSystem tables = parse(
+    Model tables = parseModel(
         "Lsystem: 1\naxiom: A\ntable: v\nA --> F[+A]A\ntable: f\nA --> FF\n"
         "table schedule: v 2, f\nendlsystem\n");
     SubtreeSummaries t(tables, 3);
@@ -113,7 +116,7 @@ TEST(SubtreeSummaries, UnavailableWhereAModuleDoesMoreThanMove) {
 TEST(SubtreeSummaries, SummarisedPictureMatchesTheStrokeByStrokeOne) {
     graftal::testing::TempDir t;
     for (const char* text : {kKoch, kBush}) {
-        LSystem ls = parse(text);
+        Model ls = parseModel(text);
         const int n = 5;
         RenderOptions o;
         o.width = 200;

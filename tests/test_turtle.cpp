@@ -7,12 +7,14 @@
 #include "turtle/planar_measure.hpp"
 
 using namespace graftal;
+using graftal::testing::loadExample;
 using graftal::testing::parse;
+using graftal::testing::parseModel;
 
 namespace {
 
 Scene draw(const std::string& text, int steps = -1) {
-    LSystem ls = parse(text);
+    Model ls = parseModel(text);
     return interpret(ls, derive(ls, steps));
 }
 
@@ -71,12 +73,12 @@ TEST(Turtle, FilledPolygonTakesAVertexAtEachMove) {
 
 TEST(Turtle, PopOnEmptyStackIsAnError) {
     // The parser refuses unbalanced successors; a string built by hand can still be wrong.
-    LSystem ls = parse("Lsystem: 1\naxiom: F\nendlsystem\n");
+    Model ls = parseModel("Lsystem: 1\naxiom: F\nendlsystem\n");
     ModuleString bad;
     bad.push('F');
     bad.push(']');
     EXPECT_THROW(interpret(ls, bad), Error);
-    LSystem open = parse("Lsystem: 1\naxiom: {F\nendlsystem\n");
+    Model open = parseModel("Lsystem: 1\naxiom: {F\nendlsystem\n");
     EXPECT_THROW(interpret(open, derive(open, 0)), Error);
 }
 
@@ -117,7 +119,7 @@ void expectSameMeasure(const StreamedMeasure& fast, const StreamedMeasure& gener
 }
 
 // Measures `modules` both ways; the planar walk must take it.
-void expectPlanarMatchesGeneric(const LSystem& ls, const ModuleString& modules) {
+void expectPlanarMatchesGeneric(const Model& ls, const ModuleString& modules) {
     ASSERT_TRUE(turtle::staysPlanar(ls));
     std::optional<StreamedMeasure> fast = turtle::measurePlanar(ls, modules);
     ASSERT_TRUE(fast.has_value()) << "the planar walk gave up";
@@ -135,7 +137,7 @@ void expectPlanarMatchesGeneric(const LSystem& ls, const ModuleString& modules) 
 }
 
 void expectPlanarMatchesGeneric(const std::string& text, int steps = -1) {
-    LSystem ls = parse(text);
+    Model ls = parseModel(text);
     expectPlanarMatchesGeneric(ls, derive(ls, steps));
 }
 
@@ -150,13 +152,12 @@ TEST(PlanarMeasure, MatchesTheGenericTurtleOnFlatExamples) {
                              "fig3.2d-bracketed-plant.l", "fig3.2f-bracketed-plant.l",
                              "fig2.6-dragon-curve-pfg.l", "lecture-parametric-plant.l"}) {
         SCOPED_TRACE(name);
-        LSystem ls = loadLSystem(std::string(GRAFTAL_EXAMPLES_DIR) + "/" + name);
+        Model ls = loadExample(std::string(GRAFTAL_EXAMPLES_DIR) + "/" + name);
         ModuleString m = derive(ls);
-        if (!ls.homomorphism.empty()) m = applyHomomorphism(ls, m);
+        if (!ls.lsystem.homomorphism.empty()) m = applyHomomorphism(ls.lsystem, m);
         expectPlanarMatchesGeneric(ls, m);
     }
-    LSystem koch =
-        loadLSystem(std::string(GRAFTAL_EXAMPLES_DIR) + "/fig2.2-quadratic-koch-island.l");
+    Model koch = loadExample(std::string(GRAFTAL_EXAMPLES_DIR) + "/fig2.2-quadratic-koch-island.l");
     expectPlanarMatchesGeneric(koch, derive(koch, 5));  // 112,000 turns
 }
 
@@ -188,7 +189,7 @@ TEST(PlanarMeasure, MatchesTheGenericTurtleOnEveryFlatOperation) {
 }
 
 TEST(PlanarMeasure, ThreeDimensionalSymbolsTakeTheGenericTurtle) {
-    LSystem ls = parse("Lsystem: 1\nangle increment: 30\naxiom: F&F/F\nendlsystem\n");
+    Model ls = parseModel("Lsystem: 1\nangle increment: 30\naxiom: F&F/F\nendlsystem\n");
     EXPECT_FALSE(turtle::staysPlanar(ls));
     ModuleString m = derive(ls);
     EXPECT_FALSE(turtle::measurePlanar(ls, m).has_value());
@@ -197,26 +198,26 @@ TEST(PlanarMeasure, ThreeDimensionalSymbolsTakeTheGenericTurtle) {
     expectSameMeasure(measureModules(ls, m), generic);
 
     // A pitch the productions do not show (a string built by hand) still leaves the plane.
-    LSystem flat = parse("Lsystem: 1\naxiom: F\nendlsystem\n");
+    Model flat = parseModel("Lsystem: 1\naxiom: F\nendlsystem\n");
     ASSERT_TRUE(turtle::staysPlanar(flat));
     ModuleString pitched;
     for (Symbol s : {Symbol('F'), Symbol('&'), Symbol('F')}) pitched.push(s);
     EXPECT_FALSE(turtle::measurePlanar(flat, pitched).has_value());
     EXPECT_TRUE(measureModules(flat, pitched).is3D);
 
-    LSystem tropism = parse(
+    Model tropism = parseModel(
         "Lsystem: 1\ntropism direction: 0, -1, 0\ntropism elasticity: 0.2\naxiom: F+F\n"
         "endlsystem\n");
     EXPECT_FALSE(turtle::staysPlanar(tropism));
 }
 
 TEST(PlanarMeasure, MalformedStringsGetTheGenericTurtlesErrors) {
-    LSystem ls = parse("Lsystem: 1\naxiom: F\nendlsystem\n");
+    Model ls = parseModel("Lsystem: 1\naxiom: F\nendlsystem\n");
     ModuleString bad;
     bad.push('F');
     bad.push(']');
     EXPECT_FALSE(turtle::measurePlanar(ls, bad).has_value());
     EXPECT_THROW(measureModules(ls, bad), Error);
-    LSystem open = parse("Lsystem: 1\naxiom: {F\nendlsystem\n");
+    Model open = parseModel("Lsystem: 1\naxiom: {F\nendlsystem\n");
     EXPECT_THROW(measureModules(open, derive(open, 0)), Error);
 }

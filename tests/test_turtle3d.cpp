@@ -6,7 +6,9 @@
 #include "test_helpers.hpp"
 
 using namespace graftal;
+using graftal::testing::loadExample;
 using graftal::testing::parse;
+using graftal::testing::parseModel;
 
 namespace {
 
@@ -16,8 +18,8 @@ struct Frame {
 
 // The frame the turtle has when it reaches the ?H ?L ?U queries at the end of `modules`.
 Frame frameAfter(const std::string& modules, double angle = 90) {
-    LSystem ls = parse("Lsystem: 1\nangle increment: " + std::to_string(angle) +
-                       "\naxiom: " + modules + "?H(0,0,0)?L(0,0,0)?U(0,0,0)\nendlsystem\n");
+    Model ls = parseModel("Lsystem: 1\nangle increment: " + std::to_string(angle) +
+                          "\naxiom: " + modules + "?H(0,0,0)?L(0,0,0)?U(0,0,0)\nendlsystem\n");
     ModuleString s = derive(ls, 0);
     auto v = [&](std::size_t i) {
         auto p = s.params(i);
@@ -90,8 +92,8 @@ TEST(Turtle3D, FrameStaysOrthonormalAfterAMillionRotations) {
     // Irrational-looking angles so nothing cancels exactly.
     std::string axiom;
     for (int i = 0; i < 350000; ++i) axiom += "+&/";  // 1.05 million rotations
-    LSystem big = parse("Lsystem: 1\nangle increment: 13.7\naxiom: " + axiom +
-                        "?H(0,0,0)?L(0,0,0)?U(0,0,0)\nendlsystem\n");
+    Model big = parseModel("Lsystem: 1\nangle increment: 13.7\naxiom: " + axiom +
+                           "?H(0,0,0)?L(0,0,0)?U(0,0,0)\nendlsystem\n");
     ModuleString s = derive(big, 0);
     std::size_t n = s.size();
     auto v = [&](std::size_t i) {
@@ -109,7 +111,7 @@ TEST(Turtle3D, FrameStaysOrthonormalAfterAMillionRotations) {
 
 TEST(Turtle3D, TropismBendsTowardTheVectorByElasticityTimesSine) {
     // Heading up, T pointing right: after one segment H turns toward T by e·|H×T| = e rad.
-    LSystem ls = parse(
+    Model ls = parseModel(
         "Lsystem: 1\ntropism direction: 1,0,0\ntropism elasticity: 0.2\n"
         "axiom: F?H(0,0,0)\nendlsystem\n");
     ModuleString s = derive(ls, 0);
@@ -119,14 +121,14 @@ TEST(Turtle3D, TropismBendsTowardTheVectorByElasticityTimesSine) {
 }
 
 TEST(Turtle3D, NegativeElasticityBendsAway) {
-    LSystem ls = parse(
+    Model ls = parseModel(
         "Lsystem: 1\ntropism direction: 1,0,0\ntropism elasticity: -0.2\n"
         "axiom: F?H(0,0,0)\nendlsystem\n");
     EXPECT_NEAR(derive(ls, 0).params(1)[0], -std::sin(0.2), 1e-12);
 }
 
 TEST(Turtle3D, TropismVanishesAlongTheVector) {
-    LSystem ls = parse(
+    Model ls = parseModel(
         "Lsystem: 1\ntropism direction: 0,1,0\ntropism elasticity: 0.5\n"
         "axiom: FFF?H(0,0,0)\nendlsystem\n");
     ModuleString s = derive(ls, 0);
@@ -136,7 +138,7 @@ TEST(Turtle3D, TropismVanishesAlongTheVector) {
 }
 
 TEST(Turtle3D, ConsecutiveSegmentsOfAnAxisAreLinked) {
-    LSystem ls = parse("Lsystem: 1\naxiom: FF[+F]F f F\nendlsystem\n");
+    Model ls = parseModel("Lsystem: 1\naxiom: FF[+F]F f F\nendlsystem\n");
     Scene s = interpret(ls, derive(ls, 0));
     ASSERT_EQ(s.segments.size(), 5u);
     EXPECT_EQ(s.segments[0].previous, kNoSegment);
@@ -147,8 +149,8 @@ TEST(Turtle3D, ConsecutiveSegmentsOfAnAxisAreLinked) {
 }
 
 TEST(Turtle3D, WidthAttributes) {
-    LSystem ls =
-        parse("Lsystem: 1\nline width: 2\nwidth factor: 0.5\naxiom: F!F#F!(0.3)F\nendlsystem\n");
+    Model ls = parseModel(
+        "Lsystem: 1\nline width: 2\nwidth factor: 0.5\naxiom: F!F#F!(0.3)F\nendlsystem\n");
     Scene s = interpret(ls, derive(ls, 0));
     ASSERT_EQ(s.segments.size(), 4u);
     EXPECT_FLOAT_EQ(s.segments[0].width, 2);
@@ -158,7 +160,7 @@ TEST(Turtle3D, WidthAttributes) {
 }
 
 TEST(Turtle3D, PolygonVerticesAndGMoves) {
-    LSystem ls = parse("Lsystem: 1\naxiom: {.G+fG+f.}F g F\nendlsystem\n");
+    Model ls = parseModel("Lsystem: 1\naxiom: {.G+fG+f.}F g F\nendlsystem\n");
     Scene s = interpret(ls, derive(ls, 0));
     ASSERT_EQ(s.polygonCount(), 1u);
     EXPECT_EQ(s.polygon(0).size(), 5u) << "start, '.', f, f, '.' (G adds no vertex)";
@@ -166,7 +168,7 @@ TEST(Turtle3D, PolygonVerticesAndGMoves) {
 }
 
 TEST(Turtle3D, SurfacesArePlacedAtTheTurtleFrame) {
-    LSystem ls = parse("Lsystem: 1\naxiom: F~leaf&F~leaf(2)~petal\nendlsystem\n");
+    Model ls = parseModel("Lsystem: 1\naxiom: F~leaf&F~leaf(2)~petal\nendlsystem\n");
     Scene s = interpret(ls, derive(ls, 0));
     ASSERT_EQ(s.surfaces.size(), 3u);
     ASSERT_EQ(s.surfaceNames.size(), 2u);
@@ -179,11 +181,11 @@ TEST(Turtle3D, SurfacesArePlacedAtTheTurtleFrame) {
 }
 
 TEST(Turtle3D, FlatStringsStayTwoDimensional) {
-    LSystem ls = parse("Lsystem: 1\naxiom: F+F[-F]\nendlsystem\n");
+    Model ls = parseModel("Lsystem: 1\naxiom: F+F[-F]\nendlsystem\n");
     EXPECT_FALSE(interpret(ls, derive(ls, 0)).is3D);
-    LSystem rolled = parse("Lsystem: 1\naxiom: F/(180)F[+F]/(180)F[+F]\nendlsystem\n");
+    Model rolled = parseModel("Lsystem: 1\naxiom: F/(180)F[+F]/(180)F[+F]\nendlsystem\n");
     EXPECT_FALSE(interpret(rolled, derive(rolled, 0)).is3D) << "a half roll keeps a plant flat";
-    LSystem pitched = parse("Lsystem: 1\naxiom: F&F\nendlsystem\n");
+    Model pitched = parseModel("Lsystem: 1\naxiom: F&F\nendlsystem\n");
     EXPECT_TRUE(interpret(pitched, derive(pitched, 0)).is3D);
 }
 

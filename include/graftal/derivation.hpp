@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "graftal/lsystem.hpp"
+#include "graftal/model.hpp"
 #include "graftal/module_string.hpp"
 
 namespace graftal {
@@ -20,6 +21,9 @@ struct DerivationOptions {
     unsigned threads = 0;               // 0: one per core. The output never depends on it.
     // Answers ?E modules. nullptr: the one the file's `environment:` lines describe (if any).
     Environment* environment = nullptr;
+    // How query modules (?P, ?H, ...) place the turtle. nullptr: the default view; the
+    // Model overloads below pass the model's own.
+    const ViewSettings* view = nullptr;
     // Called after every step with the step number and the string's size (for progress).
     std::function<void(int step, std::size_t modules)> progress;
 };
@@ -29,6 +33,8 @@ class Derivation {
     // The derivation keeps its own copy of the L-system: `Derivation d(parseLSystem(text))`
     // is safe, and so is changing the original afterwards.
     explicit Derivation(LSystem lsystem, DerivationOptions options = {});
+    // The view is copied too, for the query modules (?P, ?H, ...).
+    Derivation(const Model& model, DerivationOptions options = {});
     ~Derivation();
     Derivation(const Derivation&) = delete;
     Derivation& operator=(const Derivation&) = delete;
@@ -48,6 +54,7 @@ class Derivation {
     void answerQueries(int stepNumber);
 
     LSystem lsystem_;
+    std::optional<ViewSettings> view_;  // the Model's view, when made from one
     DerivationOptions options_;
     std::unique_ptr<ModuleString> current_, next_;
     std::unique_ptr<class RewritingEngine> rules_, decomposition_;
@@ -59,6 +66,7 @@ class Derivation {
 
 // Derives `steps` steps from the axiom (steps < 0: the file's derivation length).
 ModuleString derive(const LSystem& lsystem, int steps = -1, DerivationOptions options = {});
+ModuleString derive(const Model& model, int steps = -1, DerivationOptions options = {});
 
 // The string the turtle sees: `modules` with the homomorphism productions applied
 // recursively (up to the homomorphism's maximum depth). A copy when there are none.

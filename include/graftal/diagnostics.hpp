@@ -12,6 +12,10 @@ struct SourceLocation {
     std::string file;  // empty when the text did not come from a file
     int line = 0;      // 1-based; 0 means "no position in the text"
     int column = 0;    // 1-based, counted in bytes
+    // Where the offending text ends: the line and the column just past its last byte
+    // (0 when unknown). toString() prints only the start.
+    int endLine = 0;
+    int endColumn = 0;
 
     std::string toString() const;
 };

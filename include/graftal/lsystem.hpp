@@ -1,4 +1,6 @@
-// The compiled L-system: what the parser produces and the derivation engine runs.
+// The compiled L-system: the grammar the parser produces and the derivation engine runs.
+// How it is drawn is a separate value (ViewSettings, view_settings.hpp); a parse yields both
+// as a Model (model.hpp).
 #pragma once
 
 #include <cstdint>
@@ -14,44 +16,8 @@
 #include "graftal/environment.hpp"
 #include "graftal/expression.hpp"
 #include "graftal/module_string.hpp"
-#include "graftal/scene.hpp"
 
 namespace graftal {
-
-// How the picture is drawn: the view settings a .l file may carry.
-enum class LineStyle { Lines, Cylinders };
-
-// A predefined surface a file names: `surface: l leaf.s 0.5` places leaf.s at `~l`.
-struct SurfaceDeclaration {
-    std::string name;  // what follows ~ in module strings
-    std::string file;  // a .s file, relative to the L-system file, or a built-in name
-    double scale = 1;
-    SourceLocation location;
-};
-
-struct ViewSettings {
-    double angleDegrees = 90;                    // δ, the turn of + and -
-    double stepLength = 1;                       // length of F and f
-    double initialHeading = 0;                   // degrees counter-clockwise from up (+y)
-    double scaleFactor = 100;                    // pfg's picture size in percent of the window
-    bool clockwisePlus = false;                  // pfg data files: + turns right on screen
-    double initialWidth = 0.1;                   // stem diameter before any ! or #, in model units
-    double widthFactor = 0.7;                    // ! multiplies the width by this, # divides by it
-    LineStyle lineStyle = LineStyle::Cylinders;  // how 3D outputs draw segments
-    // Tropism (LSFP ch. 3.1): after each segment H turns toward `tropism` by e·|H × T|.
-    std::optional<Vec3> tropism;
-    double elasticity = 0;
-    // Camera and light for pictures of 3D scenes (cpfg's view-file names).
-    std::optional<Vec3> viewpoint, viewReferencePoint, upVector, lightDirection;
-    std::optional<double> fieldOfView;  // degrees
-    bool parallelProjection = false;
-    std::optional<Rgb> background;
-    std::string colorMap;        // a cpfg .map file, relative to the L-system file
-    int splineSubdivisions = 0;  // > 0: draw turtle paths as B-splines (LSFP Fig 2.10)
-    std::vector<SurfaceDeclaration> surfaces;
-};
-
-std::ostream& operator<<(std::ostream& os, const ViewSettings& v);
 
 // One module of a predecessor or context: a symbol and the names of its formal parameters.
 struct ModulePattern {
@@ -88,6 +54,8 @@ struct ScheduleEntry {
     int steps = -1;
 };
 
+struct ViewSettings;  // view_settings.hpp
+
 class LSystem {
   public:
     std::string name;  // the `Lsystem:` label (the file name if none)
@@ -108,11 +76,9 @@ class LSystem {
     // complement here, so the engine only ever looks at this table.
     std::vector<bool> ignored = std::vector<bool>(kMaxSymbols, false);
     std::uint64_t seed = 0;
-    ViewSettings view;
     bool legacyPfg = false;                    // read as a pfg data file (no Lsystem: header)
     std::vector<EnvironmentLine> environment;  // `environment:` lines, in file order
     std::map<std::string, std::string> defines;
-    std::vector<Diagnostic> warnings;  // what the parser noticed but accepted
 
     // The table used by derivation step `step` (1-based); 0 when there are no tables.
     int tableForStep(int step) const;
@@ -120,8 +86,9 @@ class LSystem {
     bool hasContext() const;
     bool hasMultiModulePredecessor() const;
     bool isParametric() const;
-    // Prints the L-system back in the .l language.
-    void print(std::ostream& os) const;
+    // Prints the L-system back in the .l language; the view settings, when given, go where
+    // a .l file usually has them (after the seed).
+    void print(std::ostream& os, const ViewSettings* view = nullptr) const;
 };
 
 std::ostream& operator<<(std::ostream& os, const LSystem& ls);
@@ -131,11 +98,12 @@ struct ParseOptions {
     std::map<std::string, std::string> defines;  // -D NAME=VALUE; wins over #define
 };
 
-// Parses .l text. Collects every diagnostic it can and throws Error carrying all of them
-// if any is an error; warnings end up in LSystem::warnings.
+// The grammar of .l text, for programs that only rewrite: parse(text, options) (model.hpp)
+// with the errors thrown as one Error carrying all of them; the view and the warnings are
+// dropped. Use parse() or loadModel() to keep them.
 LSystem parseLSystem(std::string_view text, const ParseOptions& options = {});
 
-// Reads and parses a file (ParseOptions::fileName defaults to the path).
+// The same for a file (ParseOptions::fileName defaults to the path).
 LSystem loadLSystem(const std::filesystem::path& path, ParseOptions options = {});
 
 }  // namespace graftal

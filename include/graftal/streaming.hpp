@@ -31,6 +31,7 @@ void streamDerivation(const LSystem& lsystem, int steps, ModuleSink& sink,
 #include <filesystem>
 #include <vector>
 
+#include "graftal/model.hpp"
 #include "graftal/output.hpp"
 #include "graftal/scene.hpp"
 
@@ -49,26 +50,26 @@ struct StreamedMeasure {
 
 // Derives depth-first and walks the turtle over the modules as they come (when
 // `geometry`), keeping only counts and bounds.
-StreamedMeasure measureStreamed(const LSystem& lsystem, int steps,
+StreamedMeasure measureStreamed(const Model& model, int steps,
                                 const DerivationOptions& options = {}, bool geometry = true);
 
 // The same counts and bounds for a string already derived, walking the turtle without
 // storing any geometry (what `graftal stats` needs, at any size).
-StreamedMeasure measureModules(const LSystem& lsystem, const ModuleString& modules);
+StreamedMeasure measureModules(const Model& model, const ModuleString& modules);
 
 // The Scene interpret(derive(...)) would give, built from a streamed derivation.
-Scene interpretStreamed(const LSystem& lsystem, int steps, const DerivationOptions& options = {});
+Scene interpretStreamed(const Model& model, int steps, const DerivationOptions& options = {});
 
 // True when renderStreamedPng draws this derivation from subtree summaries: a picture with
 // far more segments than pixels, whose subtrees smaller than a pixel are drawn as one
 // stroke each, so that its time grows with the image rather than with the string. The
 // summaries' table must fit in half of `memoryLimit` bytes.
-bool streamedPictureIsSummarised(const LSystem& lsystem, int steps,
+bool streamedPictureIsSummarised(const Model& model, int steps,
                                  std::size_t memoryLimit = std::size_t(2) << 30);
 
 // A 2D PNG of the derivation drawn while streaming (two passes: measure, then draw);
 // memory stays proportional to the derivation depth and the image.
-void renderStreamedPng(const LSystem& lsystem, int steps, const DerivationOptions& options,
+void renderStreamedPng(const Model& model, int steps, const DerivationOptions& options,
                        const RenderOptions& render, const std::filesystem::path& path);
 
 }  // namespace graftal

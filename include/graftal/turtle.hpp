@@ -5,19 +5,23 @@
 #include <vector>
 
 #include "graftal/environment.hpp"
-#include "graftal/lsystem.hpp"
+#include "graftal/model.hpp"
 #include "graftal/module_string.hpp"
 #include "graftal/scene.hpp"
 
 namespace graftal {
 
-// Interprets `modules` with the L-system's symbol table and view settings.
+// Interprets `modules` with the model's symbol table and view settings.
 // Throws Error for a ']' with an empty stack or an unclosed '{'.
-Scene interpret(const LSystem& lsystem, const ModuleString& modules);
+Scene interpret(const Model& model, const ModuleString& modules);
+// The same for a grammar and a view held apart.
+Scene interpret(const LSystem& lsystem, const ViewSettings& view, const ModuleString& modules);
 
 // Walks the turtle over `modules` without building geometry, calling visit(i, frame) for
 // every module whose symbol is flagged in `wanted` (indexed by symbol id).
-void traceTurtle(const LSystem& lsystem, const ModuleString& modules,
+void traceTurtle(const Model& model, const ModuleString& modules, const std::vector<bool>& wanted,
+                 const std::function<void(std::size_t, const TurtleFrame&)>& visit);
+void traceTurtle(const LSystem& lsystem, const ViewSettings& view, const ModuleString& modules,
                  const std::vector<bool>& wanted,
                  const std::function<void(std::size_t, const TurtleFrame&)>& visit);
 

@@ -14,6 +14,7 @@
 #include "graftal/derivation.hpp"
 #include "graftal/growth.hpp"
 #include "graftal/lsystem.hpp"
+#include "graftal/model.hpp"
 #include "graftal/streaming.hpp"
 #include "graftal/turtle.hpp"
 
@@ -25,8 +26,8 @@ Error usageError(const std::string& message) {
     return Error(SourceLocation{"graftal", 0, 0}, message);
 }
 
-void printWarnings(const LSystem& ls) {
-    for (const auto& w : ls.warnings) std::cerr << w.toString() << '\n';
+void printWarnings(const ParseResult& parsed) {
+    for (const auto& w : parsed.warnings()) std::cerr << w.toString() << '\n';
 }
 
 nlohmann::ordered_json point(const Vec3& p) {
@@ -54,9 +55,11 @@ Loaded loadInput(const InputOptions& in) {
                          ": the derivation length must be 0 or more");
     ParseOptions po;
     po.defines = in.defines;
-    Loaded l{loadLSystem(in.file, po), 0};
-    if (!in.quiet) printWarnings(l.lsystem);
-    l.steps = in.steps.value_or(l.lsystem.derivationLength);
+    ParseResult parsed = loadModel(in.file, po);
+    if (!parsed.ok()) throw Error(parsed.errors());
+    if (!in.quiet) printWarnings(parsed);
+    Loaded l{std::move(parsed.model), 0};
+    l.steps = in.steps.value_or(l.model.lsystem.derivationLength);
     return l;
 }
 
@@ -81,21 +84,21 @@ DerivationOptions derivationOptions(const InputOptions& in) {
 
 bool chooseStreaming(const Loaded& l, const InputOptions& in, bool canStream, bool countGeometry,
                      bool pixelBound) {
-    std::string obstacle = streamingObstacle(l.lsystem);
+    std::string obstacle = streamingObstacle(l.model.lsystem);
     if (in.stream) {
         if (!obstacle.empty())
-            throw Error(SourceLocation{l.lsystem.file, 0, 0},
+            throw Error(SourceLocation{l.model.lsystem.file, 0, 0},
                         "--stream: this L-system cannot be streamed: " + obstacle);
         if (!canStream) throw usageError("--stream is not available for this output");
         return true;
     }
-    GrowthPrediction g = predictGrowth(l.lsystem, l.steps);
+    GrowthPrediction g = predictGrowth(l.model.lsystem, l.steps);
     if (g.expectedModules.size() < 2) return false;
     // Streaming needs no memory, but time grows with the string: past this many modules a
     // run would take hours, so it is refused with a message rather than started.
     const double streamLimit = static_cast<double>(in.streamLimit);
     // The last step holds the previous string and the new one; parameters take more.
-    double perModule = l.lsystem.isParametric() ? 1 + 4 + 8 * 2 : 1;
+    double perModule = l.model.lsystem.isParametric() ? 1 + 4 + 8 * 2 : 1;
     double last = g.expectedModules.back(),
            previous = g.expectedModules[g.expectedModules.size() - 2];
     double bytes = (last + previous) * perModule;
@@ -118,7 +121,7 @@ bool chooseStreaming(const Loaded& l, const InputOptions& in, bool canStream, bo
         return true;
     }
     throw Error(
-        SourceLocation{l.lsystem.file, 0, 0},
+        SourceLocation{l.model.lsystem.file, 0, 0},
         "derivation step " + std::to_string(l.steps) + " would make a string of " + size +
             " modules (about " + formatBytes(bytes) + "), more than the memory limit of " +
             formatBytes(static_cast<double>(in.memoryLimit)) +
@@ -127,10 +130,9 @@ bool chooseStreaming(const Loaded& l, const InputOptions& in, bool canStream, bo
                                             : " (it cannot be streamed: " + obstacle + ")"));
 }
 
-Derived loadAndDerive(const InputOptions& in) {
-    Loaded l = loadInput(in);
-    Derived d{std::move(l.lsystem), {}, l.steps};
-    d.modules = derive(d.lsystem, d.steps, derivationOptions(in));
+Derived deriveLoaded(Loaded loaded, const InputOptions& in) {
+    Derived d{std::move(loaded.model), {}, loaded.steps};
+    d.modules = derive(d.model, d.steps, derivationOptions(in));
     endProgressLine();
     return d;
 }
@@ -241,21 +243,20 @@ class PrintingSink : public ModuleSink {
 }  // namespace
 
 int runDerive(const InputOptions& in, bool homomorphism) {
-    {
-        Loaded l = loadInput(in);
-        if (chooseStreaming(l, in, !homomorphism)) {
-            {
-                PrintingSink out(l.lsystem.symbols);
-                streamDerivation(l.lsystem, l.steps, out, derivationOptions(in));
-            }
-            std::cout << '\n';
-            std::cout.flush();
-            return std::cout ? 0 : 1;
+    Loaded l = loadInput(in);
+    if (chooseStreaming(l, in, !homomorphism)) {
+        {
+            PrintingSink out(l.model.lsystem.symbols);
+            streamDerivation(l.model.lsystem, l.steps, out, derivationOptions(in));
         }
+        std::cout << '\n';
+        std::cout.flush();
+        return std::cout ? 0 : 1;
     }
-    Derived d = loadAndDerive(in);
-    if (homomorphism) d.modules = applyHomomorphism(d.lsystem, d.modules, derivationOptions(in));
-    d.modules.print(std::cout, d.lsystem.symbols);
+    Derived d = deriveLoaded(std::move(l), in);
+    if (homomorphism)
+        d.modules = applyHomomorphism(d.model.lsystem, d.modules, derivationOptions(in));
+    d.modules.print(std::cout, d.model.lsystem.symbols);
     std::cout << '\n';
     std::cout.flush();
     return std::cout ? 0 : 1;
@@ -283,9 +284,10 @@ nlohmann::ordered_json symbolsJson(const SymbolTable& table,
 }
 
 int printPrediction(const InputOptions& in, const Loaded& l) {
-    GrowthPrediction g = predictGrowth(l.lsystem, l.steps);
+    GrowthPrediction g = predictGrowth(l.model.lsystem, l.steps);
     if (!g.exact && !g.expected)
-        throw Error(SourceLocation{l.lsystem.file, 0, 0}, "cannot predict the growth: " + g.reason);
+        throw Error(SourceLocation{l.model.lsystem.file, 0, 0},
+                    "cannot predict the growth: " + g.reason);
     nlohmann::ordered_json j;
     j["file"] = in.file;
     j["steps"] = l.steps;
@@ -298,7 +300,7 @@ int printPrediction(const InputOptions& in, const Loaded& l) {
         nlohmann::ordered_json symbols = nlohmann::ordered_json::object();
         for (std::size_t s = 0; s < g.symbolsAtEnd.size(); ++s)
             if (!(g.symbolsAtEnd[s] == BigCount()))
-                symbols[l.lsystem.symbols.name(static_cast<Symbol>(s))] =
+                symbols[l.model.lsystem.symbols.name(static_cast<Symbol>(s))] =
                     countJson(g.symbolsAtEnd[s]);
         j["symbols"] = symbols;
     } else {
@@ -318,9 +320,9 @@ int runStats(const InputOptions& in, bool geometry, bool predict) {
     j["file"] = in.file;
     j["steps"] = l.steps;
     if (chooseStreaming(l, in, true)) {
-        StreamedMeasure m = measureStreamed(l.lsystem, l.steps, derivationOptions(in), geometry);
+        StreamedMeasure m = measureStreamed(l.model, l.steps, derivationOptions(in), geometry);
         j["modules"] = m.modules;
-        j["symbols"] = symbolsJson(l.lsystem.symbols, m.symbolCounts);
+        j["symbols"] = symbolsJson(l.model.lsystem.symbols, m.symbolCounts);
         if (geometry) {
             j["segments"] = m.segments;
             j["polygons"] = m.polygons;
@@ -331,24 +333,24 @@ int runStats(const InputOptions& in, bool geometry, bool predict) {
         std::cout << j.dump(2) << '\n';
         return 0;
     }
-    ModuleString modules = derive(l.lsystem, l.steps, derivationOptions(in));
+    ModuleString modules = derive(l.model, l.steps, derivationOptions(in));
     endProgressLine();
     // Counts and bounds only: the turtle walks without storing any geometry. Without a
     // homomorphism that walk also counts the symbols, so the string is read once.
     std::optional<StreamedMeasure> m;
     if (geometry)
-        m = measureModules(l.lsystem,
-                           l.lsystem.homomorphism.empty()
-                               ? modules
-                               : applyHomomorphism(l.lsystem, modules, derivationOptions(in)));
+        m = measureModules(
+            l.model, l.model.lsystem.homomorphism.empty()
+                         ? modules
+                         : applyHomomorphism(l.model.lsystem, modules, derivationOptions(in)));
     std::vector<std::uint64_t> counts;
-    if (m && l.lsystem.homomorphism.empty()) {
+    if (m && l.model.lsystem.homomorphism.empty()) {
         counts = m->symbolCounts;
     } else {
-        counts = countSymbols(modules, l.lsystem.symbols.size(), in.threads);
+        counts = countSymbols(modules, l.model.lsystem.symbols.size(), in.threads);
     }
     j["modules"] = modules.size();
-    j["symbols"] = symbolsJson(l.lsystem.symbols, counts);
+    j["symbols"] = symbolsJson(l.model.lsystem.symbols, counts);
     if (m) {
         j["segments"] = m->segments;
         j["polygons"] = m->polygons;

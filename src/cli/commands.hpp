@@ -9,6 +9,7 @@
 
 #include "graftal/derivation.hpp"
 #include "graftal/lsystem.hpp"
+#include "graftal/model.hpp"
 #include "graftal/module_string.hpp"
 #include "graftal/output.hpp"
 
@@ -43,20 +44,21 @@ int runDerive(const InputOptions& in, bool homomorphism);
 int runStats(const InputOptions& in, bool geometry, bool predict);
 int runRender(const InputOptions& in, const RenderCommandOptions& out);
 
-// What derive, stats and render share: the parsed file, its derived string, the step count.
-struct Derived {
-    LSystem lsystem;
-    ModuleString modules;
-    int steps = 0;
-};
-Derived loadAndDerive(const InputOptions& in);
-
-// The file read and the step count settled, nothing derived yet.
+// The file read (once: its warnings are printed here) and the step count settled, nothing
+// derived yet.
 struct Loaded {
-    LSystem lsystem;
+    Model model;
     int steps = 0;
 };
 Loaded loadInput(const InputOptions& in);
+
+// What derive, stats and render share: the parsed file, its derived string, the step count.
+struct Derived {
+    Model model;
+    ModuleString modules;
+    int steps = 0;
+};
+Derived deriveLoaded(Loaded loaded, const InputOptions& in);
 DerivationOptions derivationOptions(const InputOptions& in);
 // Whether to stream: when --stream asks (an error if the L-system cannot be streamed), or
 // when the predicted string would not fit the memory limit and `canStream` (then a note

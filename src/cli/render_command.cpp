@@ -36,10 +36,10 @@ std::optional<OutputKind> outputKindFor(const std::filesystem::path& p) {
 
 // Surfaces a file declares (`surface: l leaf.s 0.5`) are read relative to the file; a
 // name without a file on disk falls back to the built-in surfaces (leaf, petal).
-SurfaceLibrary surfacesFor(const LSystem& ls, const std::string& file) {
+SurfaceLibrary surfacesFor(const ViewSettings& view, const std::string& file) {
     SurfaceLibrary lib = SurfaceLibrary::builtin();
     std::filesystem::path dir = std::filesystem::path(file).parent_path();
-    for (const auto& decl : ls.view.surfaces) {
+    for (const auto& decl : view.surfaces) {
         std::filesystem::path path = dir / decl.file;
         Surface s;
         if (std::filesystem::exists(path)) {
@@ -59,9 +59,8 @@ SurfaceLibrary surfacesFor(const LSystem& ls, const std::string& file) {
     return lib;
 }
 
-RaytraceOptions raytraceOptions(const LSystem& ls, const RenderCommandOptions& out,
+RaytraceOptions raytraceOptions(const ViewSettings& v, const RenderCommandOptions& out,
                                 unsigned threads) {
-    const ViewSettings& v = ls.view;
     RaytraceOptions r;
     r.width = out.render.width;
     r.height = out.render.height;
@@ -79,10 +78,11 @@ RaytraceOptions raytraceOptions(const LSystem& ls, const RenderCommandOptions& o
 }
 
 // The derivation as a diagram: the axiom and the string after every step.
-void renderDerivation(const LSystem& ls, int steps, const InputOptions& in,
+void renderDerivation(const Model& model, int steps, const InputOptions& in,
                       const RenderCommandOptions& out) {
+    const LSystem& ls = model.lsystem;
     std::vector<ModuleString> strings;
-    Derivation derivation(ls, derivationOptions(in));
+    Derivation derivation(model, derivationOptions(in));
     strings.push_back(derivation.current());
     for (int k = 0; k < steps; ++k) {
         derivation.step();
@@ -90,7 +90,7 @@ void renderDerivation(const LSystem& ls, int steps, const InputOptions& in,
     }
     endProgressLine();
     RenderOptions render = out.render;
-    if (!out.backgroundGiven && ls.view.background) render.background = *ls.view.background;
+    if (!out.backgroundGiven && model.view.background) render.background = *model.view.background;
     writeDerivationDiagram(strings, ls.symbols, render, out.output);
 }
 
@@ -114,36 +114,35 @@ int runRender(const InputOptions& in, const RenderCommandOptions& out) {
                         "to .svg, .png and .pdf, not 3D files");
     }
 
+    Loaded l = loadInput(in);
     if (out.derivation) {
         if (*kind != OutputKind::Picture)
             throw Error(SourceLocation{"graftal", 0, 0},
                         "--derivation draws a picture; use .svg, .png or .pdf");
-        Loaded l = loadInput(in);
-        renderDerivation(l.lsystem, l.steps, in, out);
+        renderDerivation(l.model, l.steps, in, out);
         return 0;
     }
 
     {
         // A 2D PNG can be drawn while the derivation streams; everything else needs the scene.
-        Loaded l = loadInput(in);
         bool png2D = *kind == OutputKind::Picture && imageFormatFor(out.output) == ImageFormat::Png;
-        bool pixelBound = png2D && streamedPictureIsSummarised(l.lsystem, l.steps, in.memoryLimit);
+        bool pixelBound = png2D && streamedPictureIsSummarised(l.model, l.steps, in.memoryLimit);
         if (chooseStreaming(l, in, png2D, true, pixelBound)) {
             RenderOptions render = out.render;
-            double fill = std::clamp(l.lsystem.view.scaleFactor / 100.0, 0.01, 1.0);
+            double fill = std::clamp(l.model.view.scaleFactor / 100.0, 0.01, 1.0);
             render.margin = 0.5 - (0.5 - render.margin) * fill;
-            renderStreamedPng(l.lsystem, l.steps, derivationOptions(in), render, out.output);
+            renderStreamedPng(l.model, l.steps, derivationOptions(in), render, out.output);
             return 0;
         }
     }
-    Derived d = loadAndDerive(in);
+    Derived d = deriveLoaded(std::move(l), in);
     Scene scene =
-        interpret(d.lsystem, applyHomomorphism(d.lsystem, d.modules, derivationOptions(in)));
-    if (int n = out.spline.value_or(d.lsystem.view.splineSubdivisions); n > 0)
+        interpret(d.model, applyHomomorphism(d.model.lsystem, d.modules, derivationOptions(in)));
+    if (int n = out.spline.value_or(d.model.view.splineSubdivisions); n > 0)
         scene = smoothSegments(scene, n);
-    if (!d.lsystem.view.colorMap.empty()) {
+    if (!d.model.view.colorMap.empty()) {
         std::filesystem::path map =
-            std::filesystem::path(in.file).parent_path() / d.lsystem.view.colorMap;
+            std::filesystem::path(in.file).parent_path() / d.model.view.colorMap;
         scene.palette = loadColorMap(map);
     }
 
@@ -152,7 +151,7 @@ int runRender(const InputOptions& in, const RenderCommandOptions& out) {
         // No turtle meaning (Anabaena's cells, the Fibonacci words): the derivation is
         // the picture the book draws for such systems.
         note(in, "the string draws nothing; drawing its derivation instead");
-        renderDerivation(d.lsystem, d.steps, in, out);
+        renderDerivation(d.model, d.steps, in, out);
         return 0;
     }
 
@@ -163,20 +162,20 @@ int runRender(const InputOptions& in, const RenderCommandOptions& out) {
         if (scene.is3D) scene = projectScene(scene, view.value_or(ViewDirection::Front));
         RenderOptions render = out.render;
         // pfg's scale factor: the picture fills that share of the frame (100 = all of it).
-        double fill = std::clamp(d.lsystem.view.scaleFactor / 100.0, 0.01, 1.0);
+        double fill = std::clamp(d.model.view.scaleFactor / 100.0, 0.01, 1.0);
         render.margin = 0.5 - (0.5 - render.margin) * fill;
-        if (!out.backgroundGiven && d.lsystem.view.background)
-            render.background = *d.lsystem.view.background;
+        if (!out.backgroundGiven && d.model.view.background)
+            render.background = *d.model.view.background;
         writeImage(scene, render, out.output);
         return 0;
     }
 
     // Uncoloured 3D plants are bark brown, not line art's ink, so their shading shows.
-    if (d.lsystem.view.colorMap.empty()) scene.palette = defaultPalette3D();
-    SurfaceLibrary surfaces = surfacesFor(d.lsystem, in.file);
+    if (d.model.view.colorMap.empty()) scene.palette = defaultPalette3D();
+    SurfaceLibrary surfaces = surfacesFor(d.model.view, in.file);
     MeshOptions mo;
     mo.tubeSides = out.tubeSides;
-    mo.cylinders = d.lsystem.view.lineStyle == LineStyle::Cylinders;
+    mo.cylinders = d.model.view.lineStyle == LineStyle::Cylinders;
     if (*kind == OutputKind::Picture) {
         // In a picture, a stem thinner than a pixel would vanish between the rays: draw it at
         // least about a pixel wide, as line art would. 3D files keep the true widths.
@@ -199,7 +198,7 @@ int runRender(const InputOptions& in, const RenderCommandOptions& out) {
             writeGlb(mesh, out.output);
             break;
         case OutputKind::Picture:
-            renderRaytraced(mesh, raytraceOptions(d.lsystem, out, in.threads), out.output);
+            renderRaytraced(mesh, raytraceOptions(d.model.view, out, in.threads), out.output);
             break;
     }
     return 0;

@@ -3,6 +3,7 @@
 #include <ostream>
 
 #include "graftal/lsystem.hpp"
+#include "graftal/view_settings.hpp"
 
 namespace graftal {
 
@@ -109,7 +110,7 @@ std::ostream& operator<<(std::ostream& os, const ViewSettings& v) {
               << (v.clockwisePlus ? "\n/* + turns clockwise (pfg) */" : "") << '\n';
 }
 
-void LSystem::print(std::ostream& os) const {
+void LSystem::print(std::ostream& os, const ViewSettings* view) const {
     if (legacyPfg) os << "/* read as a pfg data file */\n";
     for (std::size_t s = kFirstDeclaredSymbol; s < symbols.size(); ++s)
         os << (s == kFirstDeclaredSymbol ? "module " : ", ") << symbols.name(static_cast<Symbol>(s))
@@ -117,7 +118,7 @@ void LSystem::print(std::ostream& os) const {
     os << "Lsystem: " << name << '\n';
     os << "derivation length: " << derivationLength << '\n';
     if (seed) os << "seed: " << seed << '\n';
-    os << view;
+    if (view) os << *view;
     os << "axiom: " << (axiom.empty() ? std::string("*") : axiom.toString(symbols)) << '\n';
     std::string ign;
     for (std::size_t s = 0; s < symbols.size(); ++s)

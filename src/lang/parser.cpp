@@ -2,6 +2,8 @@
 // reads lines, declarations and keyword directives (see parser.hpp).
 #include "parser.hpp"
 
+#include "graftal/model.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -108,23 +110,24 @@ std::size_t findLastTopLevel(std::string_view s, char c) {
     return found;
 }
 
-LSystem Parser::run() {
-    ls_.name = src_.fileName;
-    ls_.file = src_.fileName;
+void Parser::run() {
     collectDeclarations();
-    for (const auto& [k, v] : options_.defines) ls_.defines[k] = v;
-    ls_.legacyPfg = !sawLsystemHeader_;
-    ls_.view.clockwisePlus = ls_.legacyPfg;
+    for (const auto& [k, v] : options_.defines) defines_[k] = v;
+    target_.beginSource(src_.fileName, !sawLsystemHeader_);
+    for (const auto& [k, v] : defines_) {
+        auto line = defineLines_.find(k);
+        bool fromFile = !options_.defines.count(k) && line != defineLines_.end();
+        target_.define(k, v, fromFile ? src_.at(line->second, 1) : SourceLocation{});
+    }
     for (const auto& line : src_.lines) {
         parseLine(line);
         if (errorCount() >= kMaxErrors) {
             // A file that is not an L-system at all should not print a page per line.
             diags_.error(src_.at(line.number, 1), "too many errors; giving up on this file");
-            return std::move(ls_);
+            return;
         }
     }
     finish();
-    return std::move(ls_);
 }
 
 SourceLocation Parser::at(const SourceLine& line, std::size_t offset) const {
@@ -195,7 +198,7 @@ void Parser::parseDefine(const SourceLine& line, std::size_t start) {
     std::string name(t.substr(nameStart, p - nameStart));
     std::string value(trimView(t.substr(p)));
     if (value.empty()) value = "1";
-    if (!options_.defines.count(name)) ls_.defines[name] = value;
+    if (!options_.defines.count(name)) defines_[name] = value;
     defineLines_[name] = line.number;
 }
 
@@ -226,13 +229,13 @@ void Parser::parseModuleDeclaration(const SourceLine& line, std::size_t start) {
         }
         while (i < end && (std::isalnum(static_cast<unsigned char>(t[i])) || t[i] == '_')) ++i;
         std::string_view name = t.substr(s, i - s);
-        if (ls_.symbols.size() >= kMaxSymbols && ls_.symbols.find(name) < 0) {
+        if (target_.symbols().size() >= kMaxSymbols && target_.symbols().find(name) < 0) {
             diags_.error(at(line, s), "too many module names: at most " +
                                           std::to_string(kMaxSymbols - kFirstDeclaredSymbol) +
                                           " multi-letter names (and ~surfaces) per file");
             return;
         }
-        ls_.symbols.declare(name);
+        target_.declareModule(name, at(line, s));
         ++count;
         // cpfg allows an arity after the name, e.g. `module A(2)`; accept and skip it.
         while (i < end && std::isspace(static_cast<unsigned char>(t[i]))) ++i;
@@ -316,7 +319,7 @@ bool Parser::constantValue(const SourceLine& line, std::size_t from, double& val
         return false;
     }
     ExpressionScope scope;
-    scope.defines = &ls_.defines;
+    scope.defines = &defines_;
     DiagnosticList local;
     Expression e = compileExpression(trimView(v), at(line, from + off), scope, local);
     for (const auto& d : local.items()) diags_.add(d);
@@ -345,7 +348,7 @@ void Parser::parseDirective(const SourceLine& line, const std::string& kw, std::
                      (firstNonBlank(value) == std::string_view::npos ? 0 : firstNonBlank(value)));
     double v = 0;
     if (kw == "lsystem") {
-        ls_.name = std::string(trimView(value));
+        target_.name(std::string(trimView(value)), loc);
     } else if (kw == "derivation length") {
         if (!constantValue(line, valueStart, v)) return;
         if (v < 0 || v != std::floor(v) || v > 1e6) {
@@ -355,7 +358,7 @@ void Parser::parseDirective(const SourceLine& line, const std::string& kw, std::
                              formatNumber(v));
             return;
         }
-        ls_.derivationLength = static_cast<int>(v);
+        target_.derivationLength(static_cast<int>(v), loc);
     } else if (kw == "axiom") {
         if (sawAxiom_) {
             diags_.error(
@@ -367,33 +370,6 @@ void Parser::parseDirective(const SourceLine& line, const std::string& kw, std::
         parseAxiom(line, valueStart);
     } else if (kw == "ignore" || kw == "consider") {
         parseIgnore(line, kw, valueStart);
-    } else if (kw == "angle factor") {
-        if (!constantValue(line, valueStart, v)) return;
-        if (v <= 0) {
-            diags_.error(loc, "angle factor must be positive (delta = 360 / factor)");
-            return;
-        }
-        ls_.view.angleDegrees = 360.0 / v;
-    } else if (kw == "angle increment") {
-        if (!constantValue(line, valueStart, v)) return;
-        ls_.view.angleDegrees = v;
-    } else if (kw == "scale factor") {
-        if (!constantValue(line, valueStart, v)) return;
-        if (v <= 0) {
-            diags_.error(loc, "scale factor must be positive");
-            return;
-        }
-        ls_.view.scaleFactor = v;
-    } else if (kw == "initial heading") {
-        if (!constantValue(line, valueStart, v)) return;
-        ls_.view.initialHeading = v;
-    } else if (kw == "step length") {
-        if (!constantValue(line, valueStart, v)) return;
-        if (v <= 0) {
-            diags_.error(loc, "step length must be positive");
-            return;
-        }
-        ls_.view.stepLength = v;
     } else if (kw == "maximum depth") {
         if (!constantValue(line, valueStart, v)) return;
         if (section_ == Section::Main) {
@@ -405,8 +381,9 @@ void Parser::parseDirective(const SourceLine& line, const std::string& kw, std::
             diags_.error(loc, "maximum depth must be a whole number from 1 to 10000");
             return;
         }
-        (section_ == Section::Decomposition ? ls_.decompositionDepth : ls_.homomorphismDepth) =
-            static_cast<int>(v);
+        target_.maximumDepth(section_ == Section::Decomposition ? ProductionGroup::Decomposition
+                                                                : ProductionGroup::Homomorphism,
+                             static_cast<int>(v), loc);
     } else if (kw == "table") {
         std::string name(trimView(value));
         if (section_ != Section::Main) {
@@ -418,19 +395,20 @@ void Parser::parseDirective(const SourceLine& line, const std::string& kw, std::
             diags_.error(loc, "expected a table name after 'table:'");
             return;
         }
-        auto it = std::find(ls_.tableNames.begin(), ls_.tableNames.end(), name);
-        if (it != ls_.tableNames.end()) {
+        auto it = std::find(tableNames_.begin(), tableNames_.end(), name);
+        if (it != tableNames_.end()) {
             diags_.error(loc, "table '" + name + "' is defined twice");
             return;
         }
-        ls_.tableNames.push_back(name);
-        currentTable_ = static_cast<int>(ls_.tableNames.size()) - 1;
+        tableNames_.push_back(name);
+        target_.table(name, loc);
+        currentTable_ = static_cast<int>(tableNames_.size()) - 1;
     } else if (kw == "environment") {
         if (trimView(value).empty()) {
             diags_.error(loc, "expected an environment name after 'environment:'");
             return;
         }
-        ls_.environment.push_back({std::string(trimView(value)), loc});
+        target_.environmentLine({std::string(trimView(value)), loc});
     } else if (kw == "table schedule") {
         parseSchedule(line, valueStart);
     } else if (parseViewSetting(line, kw, valueStart)) {
@@ -443,7 +421,7 @@ void Parser::parseDirective(const SourceLine& line, const std::string& kw, std::
                          "seed must be a whole number from 0 to 2^64 - 1, not " + formatNumber(v));
             return;
         }
-        ls_.seed = static_cast<std::uint64_t>(v);
+        target_.seed(static_cast<std::uint64_t>(v), loc);
     }
 }
 
@@ -472,7 +450,7 @@ void Parser::parseSchedule(const SourceLine& line, std::size_t valueStart) {
                 diags_.error(at(line, col), "'repeat' must end the schedule");
                 return;
             }
-            ls_.scheduleRepeats = true;
+            scheduleRepeats_ = true;
             break;
         }
         std::size_t sp = t.find_first_of(" \t");
@@ -483,7 +461,7 @@ void Parser::parseSchedule(const SourceLine& line, std::size_t valueStart) {
             double steps = 0;
             std::size_t countCol = col + sp + firstNonBlank(t.substr(sp));
             ExpressionScope scope;
-            scope.defines = &ls_.defines;
+            scope.defines = &defines_;
             DiagnosticList local;
             Expression ex =
                 compileExpression(trimView(t.substr(sp)), at(line, countCol), scope, local);
@@ -516,15 +494,17 @@ void Parser::parseAxiom(const SourceLine& line, std::size_t valueStart) {
     SourceLocation loc = at(line, valueStart);
     if (trimView(value) == "*") return;  // the empty axiom
     std::vector<ModuleToken> toks;
-    if (!tokenizeModules(value, loc, static_cast<int>(valueStart) + 1, ls_.symbols, toks, diags_))
+    if (!tokenizeModules(value, loc, static_cast<int>(valueStart) + 1, target_.symbols(), toks,
+                         diags_))
         return;
     if (toks.empty()) {
         diags_.error(at(line, valueStart), "expected the axiom's modules after 'axiom:'");
         return;
     }
     ExpressionScope scope;
-    scope.defines = &ls_.defines;
+    scope.defines = &defines_;
     std::vector<double> args;
+    ModuleString axiom;
     for (const auto& tok : toks) {
         args.clear();
         for (const auto& a : tok.args) {
@@ -540,8 +520,9 @@ void Parser::parseAxiom(const SourceLine& line, std::size_t valueStart) {
                 return;
             }
         }
-        ls_.axiom.push(tok.symbol, args);
+        axiom.push(tok.symbol, args);
     }
+    target_.axiom(std::move(axiom), loc);
     checkBrackets(toks, line, "axiom");
 }
 
@@ -573,7 +554,8 @@ void Parser::parseIgnore(const SourceLine& line, const std::string& kw, std::siz
         return;
     }
     std::vector<ModuleToken> toks;
-    if (!tokenizeModules(value, loc, static_cast<int>(valueStart) + 1, ls_.symbols, toks, diags_))
+    if (!tokenizeModules(value, loc, static_cast<int>(valueStart) + 1, target_.symbols(), toks,
+                         diags_))
         return;
     for (const auto& t : toks) {
         if (t.hasParens) {
@@ -582,14 +564,10 @@ void Parser::parseIgnore(const SourceLine& line, const std::string& kw, std::siz
             return;
         }
     }
-    if (kw == "ignore") {
-        sawIgnore_ = true;
-        for (const auto& t : toks) ls_.ignored[t.symbol] = true;
-    } else {
-        if (!sawConsider_) std::fill(ls_.ignored.begin(), ls_.ignored.end(), true);
-        sawConsider_ = true;
-        for (const auto& t : toks) ls_.ignored[t.symbol] = false;
-    }
+    (kw == "ignore" ? sawIgnore_ : sawConsider_) = true;
+    std::vector<Symbol> listed;
+    for (const auto& t : toks) listed.push_back(t.symbol);
+    target_.ignore(listed, kw == "consider", loc);
 }
 
 std::size_t Parser::errorCount() const {
@@ -601,32 +579,11 @@ std::size_t Parser::errorCount() const {
 }  // namespace parsing
 
 LSystem parseLSystem(std::string_view text, const ParseOptions& options) {
-    DiagnosticList diags;
-    SourceText src;
-    if (!prepareSource(text, options.fileName, src, diags)) throw Error(diags.items());
-    parsing::Parser parser(src, options, diags);
-    LSystem ls = parser.run();
-    if (diags.hasErrors()) {
-        std::vector<Diagnostic> errors;
-        for (const auto& d : diags.items())
-            if (d.severity == Severity::Error) errors.push_back(d);
-        throw Error(std::move(errors));
-    }
-    return ls;
+    return std::move(parse(text, options).orThrow().lsystem);
 }
 
 LSystem loadLSystem(const std::filesystem::path& path, ParseOptions options) {
-    if (options.fileName.empty()) options.fileName = path.string();
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec))
-        throw Error(SourceLocation{path.string(), 0, 0},
-                    "is a directory, expected an L-system file");
-    std::ifstream in(path, std::ios::binary);
-    if (!in)
-        throw Error(SourceLocation{path.string(), 0, 0}, "cannot open the file (does it exist?)");
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return parseLSystem(ss.str(), options);
+    return std::move(loadModel(path, std::move(options)).orThrow().lsystem);
 }
 
 }  // namespace graftal

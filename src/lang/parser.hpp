@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "graftal/lsystem.hpp"
+#include "graftal/parser_target.hpp"
 #include "module_lexer.hpp"
 #include "source_text.hpp"
 
@@ -35,10 +36,12 @@ extern const std::vector<std::string> kKeywords;
 
 class Parser {
   public:
-    Parser(const SourceText& src, const ParseOptions& options, DiagnosticList& diags)
-        : src_(src), options_(options), diags_(diags) {}
+    // Reads `src` and writes what it finds through `target`; problems go to `diags`.
+    Parser(const SourceText& src, const ParseOptions& options, DiagnosticList& diags,
+           ParserTarget& target)
+        : src_(src), options_(options), diags_(diags), target_(target) {}
 
-    LSystem run();
+    void run();
 
   private:
     SourceLocation at(const SourceLine& line, std::size_t offset) const;
@@ -86,18 +89,16 @@ class Parser {
 
     void finish();
 
-    static bool samePattern(const std::vector<ModulePattern>& a,
-                            const std::vector<ModulePattern>& b);
-
-    void warnShadowedProductions();
-
     static constexpr std::size_t kMaxErrors = 20;
     std::size_t errorCount() const;
 
     const SourceText& src_;
     const ParseOptions& options_;
     DiagnosticList& diags_;
-    LSystem ls_;
+    ParserTarget& target_;
+    std::map<std::string, std::string> defines_;  // #define and -D, for expressions
+    std::vector<std::string> tableNames_;         // in declaration order
+    bool scheduleRepeats_ = false;
     std::map<std::string, int> defineLines_;
     bool sawLsystemHeader_ = false;
     bool sawAxiom_ = false;

@@ -20,7 +20,7 @@ bool Parser::parsePatterns(const SourceLine& line, std::size_t from, std::size_t
     }
     std::vector<ModuleToken> toks;
     SourceLocation loc = at(line, from);
-    if (!tokenizeModules(part, loc, static_cast<int>(from) + 1, ls_.symbols, toks, diags_))
+    if (!tokenizeModules(part, loc, static_cast<int>(from) + 1, target_.symbols(), toks, diags_))
         return false;
     for (auto& t : toks) {
         ModulePattern p;
@@ -59,6 +59,8 @@ void Parser::parseProduction(const SourceLine& line, Arrow arrow) {
     Production prod;
     std::size_t lineStart = firstNonBlank(t);
     prod.location = at(line, lineStart);
+    prod.location.endLine = line.number;
+    prod.location.endColumn = static_cast<int>(t.find_last_not_of(" \t\r\f\v")) + 2;
 
     // Left of the arrow: [lc <] pred [> rc] [: condition]
     std::string_view lhs = t.substr(0, arrow.pos);
@@ -97,7 +99,7 @@ void Parser::parseProduction(const SourceLine& line, Arrow arrow) {
 
     ExpressionScope scope;
     scope.variables = formals;
-    scope.defines = &ls_.defines;
+    scope.defines = &defines_;
     if (condColon != std::string_view::npos) {
         std::string_view cond = lhs.substr(condColon + 1);
         std::size_t off = firstNonBlank(cond);
@@ -137,8 +139,8 @@ void Parser::parseProduction(const SourceLine& line, Arrow arrow) {
     }
     if (trimView(succ) != "*") {
         std::vector<ModuleToken> toks;
-        if (!tokenizeModules(succ, at(line, succFrom), static_cast<int>(succFrom) + 1, ls_.symbols,
-                             toks, diags_))
+        if (!tokenizeModules(succ, at(line, succFrom), static_cast<int>(succFrom) + 1,
+                             target_.symbols(), toks, diags_))
             return;
         for (const auto& tok : toks) {
             SuccessorModule m;
@@ -174,16 +176,14 @@ void Parser::parseProduction(const SourceLine& line, Arrow arrow) {
         return;
     }
     prod.table = currentTable_;
-    if (section_ == Section::Decomposition)
-        ls_.decomposition.push_back(std::move(prod));
-    else if (section_ == Section::Homomorphism)
-        ls_.homomorphism.push_back(std::move(prod));
-    else
-        ls_.productions.push_back(std::move(prod));
+    target_.production(section_ == Section::Decomposition  ? ProductionGroup::Decomposition
+                       : section_ == Section::Homomorphism ? ProductionGroup::Homomorphism
+                                                           : ProductionGroup::Main,
+                       std::move(prod));
 }
 
 void Parser::resolveSchedule() {
-    if (ls_.tableNames.empty()) {
+    if (tableNames_.empty()) {
         if (scheduleLine_)
             diags_.error(src_.at(scheduleLine_, 1), "'table schedule:' without any 'table:'");
         return;
@@ -194,12 +194,13 @@ void Parser::resolveSchedule() {
                      "applies at which step");
         return;
     }
+    std::vector<ScheduleEntry> schedule;
     for (std::size_t k = 0; k < rawSchedule_.size(); ++k) {
         const auto& e = rawSchedule_[k];
-        auto it = std::find(ls_.tableNames.begin(), ls_.tableNames.end(), e.name);
-        if (it == ls_.tableNames.end()) {
+        auto it = std::find(tableNames_.begin(), tableNames_.end(), e.name);
+        if (it == tableNames_.end()) {
             std::string names;
-            for (const auto& n : ls_.tableNames) names += (names.empty() ? "" : ", ") + n;
+            for (const auto& n : tableNames_) names += (names.empty() ? "" : ", ") + n;
             diags_.error(e.location, "unknown table '" + e.name + "' (tables: " + names + ")");
             return;
         }
@@ -207,11 +208,12 @@ void Parser::resolveSchedule() {
             diags_.error(e.location, "only the last table of a schedule may omit its step count");
             return;
         }
-        ls_.schedule.push_back({static_cast<int>(it - ls_.tableNames.begin()), e.steps});
+        schedule.push_back({static_cast<int>(it - tableNames_.begin()), e.steps});
     }
-    if (ls_.scheduleRepeats && !rawSchedule_.empty() && rawSchedule_.back().steps < 0)
+    if (scheduleRepeats_ && !rawSchedule_.empty() && rawSchedule_.back().steps < 0)
         diags_.error(rawSchedule_.back().location,
                      "a repeating schedule needs a step count for every table");
+    target_.tableSchedule(std::move(schedule), scheduleRepeats_, src_.at(scheduleLine_, 1));
 }
 
 void Parser::finish() {
@@ -220,37 +222,7 @@ void Parser::finish() {
         diags_.error(src_.at(last, 1), "no axiom: expected a line such as 'axiom: F'");
     }
     resolveSchedule();
-    warnShadowedProductions();
-    for (const auto& d : diags_.items())
-        if (d.severity == Severity::Warning) ls_.warnings.push_back(d);
-}
-
-bool Parser::samePattern(const std::vector<ModulePattern>& a, const std::vector<ModulePattern>& b) {
-    if (a.size() != b.size()) return false;
-    for (std::size_t i = 0; i < a.size(); ++i)
-        if (a[i].symbol != b[i].symbol || a[i].formals.size() != b[i].formals.size()) return false;
-    return true;
-}
-
-// First applicable production wins; a context-free, unconditional production listed
-// before a context-sensitive one for the same predecessor hides it for good.
-void Parser::warnShadowedProductions() {
-    auto& ps = ls_.productions;
-    for (std::size_t j = 0; j < ps.size(); ++j) {
-        if (!ps[j].hasContext()) continue;
-        for (std::size_t i = 0; i < j; ++i) {
-            if (ps[i].hasContext() || ps[i].condition || ps[i].probability) continue;
-            if (ps[i].table != -1 && ps[i].table != ps[j].table) continue;
-            if (!samePattern(ps[i].predecessor, ps[j].predecessor)) continue;
-            diags_.warning(ps[j].location,
-                           "this context-sensitive production is never applied: the "
-                           "context-free production on line " +
-                               std::to_string(ps[i].location.line) +
-                               " has the same predecessor and comes first (list "
-                               "context-sensitive productions first)");
-            break;
-        }
-    }
+    target_.endOfInput(src_.at(src_.lines.empty() ? 1 : src_.lines.back().number, 1));
 }
 
 }  // namespace graftal::parsing

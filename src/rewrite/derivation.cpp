@@ -115,7 +115,8 @@ void Derivation::answerQueries(int stepNumber) {
     std::vector<bool> wanted(lsystem_.symbols.size(), false);
     for (Symbol q = kQueryE; q <= kQueryU; ++q) wanted[q] = true;
     std::vector<TurtleFrame> frames;
-    traceTurtle(lsystem_, walked, wanted,
+    static const ViewSettings defaultView;
+    traceTurtle(lsystem_, options_.view ? *options_.view : defaultView, walked, wanted,
                 [&](std::size_t, const TurtleFrame& f) { frames.push_back(f); });
 
     std::vector<std::size_t> positions;
@@ -183,6 +184,26 @@ void Derivation::step() {
 
 void Derivation::run(int steps) {
     for (int i = 0; i < steps; ++i) step();
+}
+
+namespace {
+DerivationOptions withView(DerivationOptions options, const ViewSettings& view) {
+    if (!options.view) options.view = &view;
+    return options;
+}
+}  // namespace
+
+Derivation::Derivation(const Model& model, DerivationOptions options)
+    : Derivation(model.lsystem, std::move(options)) {
+    // A copy, so that a Derivation made from a temporary Model never points into it.
+    if (!options_.view) {
+        view_ = model.view;
+        options_.view = &*view_;
+    }
+}
+
+ModuleString derive(const Model& model, int steps, DerivationOptions options) {
+    return derive(model.lsystem, steps, withView(std::move(options), model.view));
 }
 
 ModuleString derive(const LSystem& lsystem, int steps, DerivationOptions options) {

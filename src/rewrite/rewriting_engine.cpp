@@ -397,8 +397,9 @@ bool RewritingEngine::matches(const Production& p, const ModuleString& s, std::s
 }
 
 [[noreturn]] void RewritingEngine::rethrowAt(const Error& err, const ModuleString& s, std::size_t i,
-                                             int stepNumber) const {
+                                             int stepNumber, const Production* p) const {
     std::vector<Diagnostic> ds = err.diagnostics();
+    if (p && !ds.empty()) ds.back().location = p->location;
     std::string module = ls_.symbols.name(s.symbol(i));
     auto args = s.params(i);
     if (!args.empty()) {
@@ -426,37 +427,46 @@ std::int32_t RewritingEngine::choose(const ModuleString& s, std::size_t i, std::
                                      std::vector<double>& weights) const {
     const auto& cands = candidates_[static_cast<std::size_t>(table)][s.symbol(i)];
     Draws draws{this, static_cast<std::uint64_t>(stepNumber), position, 0};
-    for (std::size_t k = 0; k < cands.size(); ++k) {
-        const Production& p = productions_[cands[k]];
-        if (!matches(p, s, i, slots)) continue;
-        if (p.condition && evaluate(*p.condition, slots, draws) == 0) continue;
-        if (!p.probability) return static_cast<std::int32_t>(cands[k]);
-        // A stochastic group: every applicable production with a probability competes,
-        // with weights normalised over the applicable ones (as cpfg does).
-        weights.assign(cands.size(), 0.0);
-        double sum = 0;
-        for (std::size_t r = k; r < cands.size(); ++r) {
-            const Production& q = productions_[cands[r]];
-            if (!q.probability) continue;
-            if (!matches(q, s, i, slots)) continue;
-            if (r != k && q.condition && evaluate(*q.condition, slots, draws) == 0) continue;
-            double w = evaluate(*q.probability, slots, draws);
-            if (w > 0) {
-                weights[r] = w;
-                sum += w;
+    const Production* evaluating = nullptr;  // whose condition or probability is evaluated
+    try {
+        for (std::size_t k = 0; k < cands.size(); ++k) {
+            const Production& p = productions_[cands[k]];
+            evaluating = &p;
+            if (!matches(p, s, i, slots)) continue;
+            if (p.condition && evaluate(*p.condition, slots, draws) == 0) continue;
+            if (!p.probability) return static_cast<std::int32_t>(cands[k]);
+            // A stochastic group: every applicable production with a probability competes,
+            // with weights normalised over the applicable ones (as cpfg does).
+            weights.assign(cands.size(), 0.0);
+            double sum = 0;
+            for (std::size_t r = k; r < cands.size(); ++r) {
+                const Production& q = productions_[cands[r]];
+                evaluating = &q;
+                if (!q.probability) continue;
+                if (!matches(q, s, i, slots)) continue;
+                if (r != k && q.condition && evaluate(*q.condition, slots, draws) == 0) continue;
+                double w = evaluate(*q.probability, slots, draws);
+                if (w > 0) {
+                    weights[r] = w;
+                    sum += w;
+                }
             }
+            if (sum <= 0) return kIdentity;
+            double u =
+                uniformAt(seed_, static_cast<std::uint64_t>(stepNumber), position, 1u << 20) * sum;
+            std::size_t last = k;
+            for (std::size_t r = k; r < cands.size(); ++r) {
+                if (weights[r] <= 0) continue;
+                last = r;
+                if (u < weights[r]) return static_cast<std::int32_t>(cands[r]);
+                u -= weights[r];
+            }
+            return static_cast<std::int32_t>(cands[last]);  // rounding left u at the top end
         }
-        if (sum <= 0) return kIdentity;
-        double u =
-            uniformAt(seed_, static_cast<std::uint64_t>(stepNumber), position, 1u << 20) * sum;
-        std::size_t last = k;
-        for (std::size_t r = k; r < cands.size(); ++r) {
-            if (weights[r] <= 0) continue;
-            last = r;
-            if (u < weights[r]) return static_cast<std::int32_t>(cands[r]);
-            u -= weights[r];
-        }
-        return static_cast<std::int32_t>(cands[last]);  // rounding left u at the top end
+    } catch (const Error& err) {
+        std::vector<Diagnostic> ds = err.diagnostics();
+        if (evaluating && !ds.empty()) ds.back().location = evaluating->location;
+        throw Error(std::move(ds));
     }
     return kIdentity;
 }
@@ -497,7 +507,7 @@ void RewritingEngine::expandOne(const ModuleString& s, std::size_t i, std::uint6
             try {
                 args[a] = evaluate(m.args[a], scratchSlots_.data(), draws);
             } catch (const Error& err) {
-                rethrowAt(err, s, i, stepNumber);
+                rethrowAt(err, s, i, stepNumber, &p);
             }
         }
         out.push(m.symbol, std::span<const double>(args, n));
@@ -669,7 +679,7 @@ bool RewritingEngine::stepGeneric(const ModuleString& cur, ModuleString& next, i
                             paramOut[po++] = evaluate(a, slots.data(), draws);
                     }
                 } catch (const Error& err) {
-                    rethrowAt(err, cur, i, stepNumber);
+                    rethrowAt(err, cur, i, stepNumber, &p);
                 }
             }
         });

@@ -65,8 +65,10 @@ class RewritingEngine {
     bool matchRight(const Production& p, const ModuleString& s, std::size_t from, double* slots,
                     int& slot) const;
     double evaluate(const Expression& e, const double* slots, Draws& draws) const;
+    // Re-raises an expression's error under the production being applied (`p`; when null,
+    // the error already names it), naming the module and the derivation step.
     [[noreturn]] void rethrowAt(const class Error& err, const ModuleString& s, std::size_t i,
-                                int stepNumber) const;
+                                int stepNumber, const Production* p = nullptr) const;
     static double stringBytes(std::size_t modules, std::size_t params, bool parametric);
     void prepareOutput(const ModuleString& cur, ModuleString& next, std::size_t modules,
                        std::size_t params, bool parametric, std::size_t extra,

@@ -87,8 +87,8 @@ struct WalkState {
 // memory, since a call may clobber every vector register.
 class PlanarWalk {
   public:
-    explicit PlanarWalk(const LSystem& ls) : ops_(opTable(ls)) {
-        const ViewSettings& v = ls.view;
+    explicit PlanarWalk(const Model& model) : ops_(opTable(model.lsystem)) {
+        const ViewSettings& v = model.view;
         step_ = v.stepLength;
         double delta = v.angleDegrees * kPi / 180.0;
         cos_ = std::cos(delta);
@@ -389,8 +389,9 @@ bool PlanarWalk::slowModule(TurtleOp op, std::span<const double> args) {
 
 }  // namespace
 
-bool staysPlanar(const LSystem& ls) {
-    if (ls.view.tropism && ls.view.elasticity != 0) return false;
+bool staysPlanar(const Model& model) {
+    const LSystem& ls = model.lsystem;
+    if (model.view.tropism && model.view.elasticity != 0) return false;
     const std::array<TurtleOp, kMaxSymbols> ops = opTable(ls);
     for (Symbol s : ls.axiom.symbols())
         if (leavesPlane(ops[s])) return false;
@@ -401,10 +402,10 @@ bool staysPlanar(const LSystem& ls) {
     return true;
 }
 
-std::optional<StreamedMeasure> measurePlanar(const LSystem& ls, const ModuleString& modules) {
+std::optional<StreamedMeasure> measurePlanar(const Model& model, const ModuleString& modules) {
     StreamedMeasure m;
-    m.symbolCounts.assign(ls.symbols.size(), 0);
-    PlanarWalk walk(ls);
+    m.symbolCounts.assign(model.lsystem.symbols.size(), 0);
+    PlanarWalk walk(model);
     if (!walk.measure(modules, m)) return std::nullopt;
     return m;
 }

@@ -15,6 +15,7 @@
 #include <optional>
 
 #include "graftal/lsystem.hpp"
+#include "graftal/model.hpp"
 #include "graftal/module_string.hpp"
 #include "graftal/streaming.hpp"
 
@@ -22,15 +23,15 @@ namespace graftal::turtle {
 
 // True when nothing the L-system derives turns the turtle out of the plane: no & ^ \ / $
 // and no ~surface in the axiom or any successor, and no tropism.
-bool staysPlanar(const LSystem& ls);
+bool staysPlanar(const Model& model);
 
 // measureModules() by the planar walk. nullopt when the string leaves the plane after all
 // (a module staysPlanar() could not see), takes a step or turn that is not finite, or is
 // malformed: the generic walk then measures it, or words the error.
-std::optional<StreamedMeasure> measurePlanar(const LSystem& ls, const ModuleString& modules);
+std::optional<StreamedMeasure> measurePlanar(const Model& model, const ModuleString& modules);
 
 // measureModules() by the generic 3D turtle (streamed_interpretation.cpp): the reference
 // the planar walk must match.
-StreamedMeasure measureGeneric(const LSystem& ls, const ModuleString& modules);
+StreamedMeasure measureGeneric(const Model& model, const ModuleString& modules);
 
 }  // namespace graftal::turtle

@@ -13,8 +13,8 @@ namespace {
 template <class Sink>
 class TurtleStream : public ModuleSink {
   public:
-    TurtleStream(const LSystem& ls, Sink& sink, StreamedMeasure* measure)
-        : machine_(ls, sink), measure_(measure) {}
+    TurtleStream(const Model& model, Sink& sink, StreamedMeasure* measure)
+        : machine_(model, sink), measure_(measure) {}
     void module(Symbol s, std::span<const double> params) override {
         if (measure_) {
             ++measure_->modules;
@@ -44,8 +44,9 @@ class CountingSink : public ModuleSink {
 
 }  // namespace
 
-StreamedMeasure measureStreamed(const LSystem& ls, int steps, const DerivationOptions& options,
+StreamedMeasure measureStreamed(const Model& model, int steps, const DerivationOptions& options,
                                 bool geometry) {
+    const LSystem& ls = model.lsystem;
     StreamedMeasure m;
     m.symbolCounts.assign(ls.symbols.size(), 0);
     if (!geometry) {
@@ -54,35 +55,37 @@ StreamedMeasure measureStreamed(const LSystem& ls, int steps, const DerivationOp
         return m;
     }
     MeasureSink sink(m);
-    TurtleStream<MeasureSink> stream(ls, sink, &m);
+    TurtleStream<MeasureSink> stream(model, sink, &m);
     streamDerivation(ls, steps, stream, options);
     stream.finish();
     return m;
 }
 
-StreamedMeasure measureModules(const LSystem& ls, const ModuleString& modules) {
+StreamedMeasure measureModules(const Model& model, const ModuleString& modules) {
     // A flat L-system (most 2D figures) takes the planar walk, several times faster.
-    if (turtle::staysPlanar(ls))
-        if (std::optional<StreamedMeasure> m = turtle::measurePlanar(ls, modules))
+    if (turtle::staysPlanar(model))
+        if (std::optional<StreamedMeasure> m = turtle::measurePlanar(model, modules))
             return std::move(*m);
-    return turtle::measureGeneric(ls, modules);
+    return turtle::measureGeneric(model, modules);
 }
 
-StreamedMeasure turtle::measureGeneric(const LSystem& ls, const ModuleString& modules) {
+StreamedMeasure turtle::measureGeneric(const Model& model, const ModuleString& modules) {
+    const LSystem& ls = model.lsystem;
     StreamedMeasure m;
     m.symbolCounts.assign(ls.symbols.size(), 0);
     for (Symbol s : modules.symbols()) ++m.symbolCounts[s];
     m.modules = modules.size();
     MeasureSink sink(m);
-    turtle::TurtleMachine<MeasureSink> machine(ls, sink);
+    turtle::TurtleMachine<MeasureSink> machine(model, sink);
     machine.run(modules);
     return m;
 }
 
-Scene interpretStreamed(const LSystem& ls, int steps, const DerivationOptions& options) {
+Scene interpretStreamed(const Model& model, int steps, const DerivationOptions& options) {
+    const LSystem& ls = model.lsystem;
     Scene scene;
     turtle::SceneSink sink(scene);
-    TurtleStream<turtle::SceneSink> stream(ls, sink, nullptr);
+    TurtleStream<turtle::SceneSink> stream(model, sink, nullptr);
     streamDerivation(ls, steps, stream, options);
     stream.finish();
     return scene;
@@ -95,23 +98,24 @@ namespace {
 constexpr double kSummariseAbove = 2e7;
 }  // namespace
 
-bool streamedPictureIsSummarised(const LSystem& ls, int steps, std::size_t memoryLimit) {
-    SubtreeSummaries sums(ls, steps, memoryLimit);
+bool streamedPictureIsSummarised(const Model& model, int steps, std::size_t memoryLimit) {
+    SubtreeSummaries sums(model, steps, memoryLimit);
     return sums.available() && sums.segments() > kSummariseAbove;
 }
 
-void renderStreamedPng(const LSystem& ls, int steps, const DerivationOptions& options,
+void renderStreamedPng(const Model& model, int steps, const DerivationOptions& options,
                        const RenderOptions& render, const std::filesystem::path& path) {
-    if (SubtreeSummaries sums(ls, steps, options.memoryLimit);
+    const LSystem& ls = model.lsystem;
+    if (SubtreeSummaries sums(model, steps, options.memoryLimit);
         sums.available() && sums.segments() > kSummariseAbove) {
-        renderSummarisedPng(ls, sums, render, path);
+        renderSummarisedPng(model, sums, render, path);
         return;
     }
-    StreamedMeasure m = measureStreamed(ls, steps, options, true);
+    StreamedMeasure m = measureStreamed(model, steps, options, true);
     StreamedPng png(render, m.bounds, m.ink, m.segments > 0, m.baseWidth, Scene::defaultPalette(),
                     path);
     PictureSink sink(png);
-    TurtleStream<PictureSink> stream(ls, sink, nullptr);
+    TurtleStream<PictureSink> stream(model, sink, nullptr);
     streamDerivation(ls, steps, stream, options);
     stream.finish();
     png.finish();

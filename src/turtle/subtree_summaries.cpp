@@ -43,12 +43,13 @@ void turnBy(double& c, double& s, double c2, double s2) {
 
 }  // namespace
 
-SubtreeSummaries::SubtreeSummaries(const LSystem& ls, int steps, std::size_t memoryLimit)
-    : ls_(ls) {
+SubtreeSummaries::SubtreeSummaries(const Model& model, int steps, std::size_t memoryLimit)
+    : ls_(model.lsystem), view_(model.view) {
+    const LSystem& ls = ls_;
     steps_ = steps < 0 ? ls.derivationLength : steps;
     symbolCount_ = ls.symbols.size();
     if (!streamingObstacle(ls).empty() || hasRandomOrParameters(ls) || drawsPolygons(ls) ||
-        (ls.view.tropism && ls.view.elasticity != 0))
+        (view_.tropism && view_.elasticity != 0))
         return;
     // One summary per symbol and string: keep the table small.
     const double entries = static_cast<double>(symbolCount_) * (steps_ + 1);
@@ -119,7 +120,7 @@ double SubtreeSummaries::segments() const {
 SubtreeMotion SubtreeSummaries::leaf(Symbol symbol) const {
     SubtreeMotion m;
     m.summarised = true;
-    const ViewSettings& v = ls_.view;
+    const ViewSettings& v = view_;
     double delta = v.angleDegrees * turtle::kPi / 180.0;
     double turn = v.clockwisePlus ? -1.0 : 1.0;
     TurtleOp op = symbol < kFirstDeclaredSymbol ? turtle::opFor(symbol) : TurtleOp::None;
@@ -242,12 +243,12 @@ bool inside(const Bounds& b, const Vec3& p, double r) {
 
 }  // namespace
 
-StreamedMeasure measureSummarised(const LSystem& ls, const SubtreeSummaries& sums,
+StreamedMeasure measureSummarised(const Model& model, const SubtreeSummaries& sums,
                                   const RenderOptions& render, double pixelTolerance) {
     StreamedMeasure result;
-    result.symbolCounts.assign(ls.symbols.size(), 0);
+    result.symbolCounts.assign(model.lsystem.symbols.size(), 0);
     MeasureSink sink(result);
-    turtle::TurtleMachine<MeasureSink> machine(ls, sink);
+    turtle::TurtleMachine<MeasureSink> machine(model, sink);
     const double pixels = std::max(1, std::max(render.width, render.height));
     walk(sums, machine, [&](const SubtreeMotion& m) {
         turtle::TurtleState& t = machine.state();
@@ -275,15 +276,15 @@ StreamedMeasure measureSummarised(const LSystem& ls, const SubtreeSummaries& sum
     return result;
 }
 
-void renderSummarisedPng(const LSystem& ls, const SubtreeSummaries& sums,
+void renderSummarisedPng(const Model& model, const SubtreeSummaries& sums,
                          const RenderOptions& render, const std::filesystem::path& path,
                          double dotRadius, double pixelTolerance) {
-    StreamedMeasure measure = measureSummarised(ls, sums, render, pixelTolerance);
+    StreamedMeasure measure = measureSummarised(model, sums, render, pixelTolerance);
     StreamedPng png(render, measure.bounds, measure.ink, measure.segments > 0, measure.baseWidth,
                     Scene::defaultPalette(), path);
     const ImageTransform transform = ImageTransform::fit(measure.bounds, render);
     PictureSink sink(png);
-    turtle::TurtleMachine<PictureSink> machine(ls, sink);
+    turtle::TurtleMachine<PictureSink> machine(model, sink);
     walk(sums, machine, [&](const SubtreeMotion& m) {
         if (m.segments > 0 && m.radius * transform.scale > dotRadius) return false;
         Segment chord = jump(machine.state(), m);

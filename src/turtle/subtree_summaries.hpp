@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "graftal/lsystem.hpp"
+#include "graftal/model.hpp"
 #include "graftal/output.hpp"
 #include "graftal/streaming.hpp"
 
@@ -39,7 +40,7 @@ class SubtreeSummaries {
     // false) for parameters, random choices, conditions, context, tropism or polygons, and
     // when the table (symbols x (steps + 1) motions) would take more than half of
     // `memoryLimit` bytes.
-    SubtreeSummaries(const LSystem& lsystem, int steps,
+    SubtreeSummaries(const Model& model, int steps,
                      std::size_t memoryLimit = std::size_t(2) << 30);
 
     bool available() const { return available_; }
@@ -63,6 +64,7 @@ class SubtreeSummaries {
     SubtreeMotion fold(std::span<const Symbol> modules, int level) const;
 
     const LSystem& ls_;
+    const ViewSettings& view_;
     bool available_ = false;
     int steps_ = 0;
     std::size_t symbolCount_ = 0;
@@ -78,14 +80,14 @@ class SubtreeSummaries {
 // A 2D PNG of the derivation, as renderStreamedPng draws it, but expanding only subtrees
 // wider than `dotRadius` pixels; each smaller one is one stroke from its start to its end.
 // The first pass finds the bounds to within `pixelTolerance` of a pixel.
-void renderSummarisedPng(const LSystem& lsystem, const SubtreeSummaries& summaries,
+void renderSummarisedPng(const Model& model, const SubtreeSummaries& summaries,
                          const RenderOptions& render, const std::filesystem::path& path,
                          double dotRadius = 0.25, double pixelTolerance = 0.02);
 
 // The first pass alone: bounds, ink and segment count of the derivation, expanding only
 // subtrees whose extent could still move the bounds by more than `pixelTolerance` of a
 // pixel of an image of `render`'s size.
-StreamedMeasure measureSummarised(const LSystem& lsystem, const SubtreeSummaries& summaries,
+StreamedMeasure measureSummarised(const Model& model, const SubtreeSummaries& summaries,
                                   const RenderOptions& render, double pixelTolerance = 0.02);
 
 }  // namespace graftal

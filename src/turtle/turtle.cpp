@@ -20,20 +20,29 @@ std::size_t segmentsAtMost(const LSystem& lsystem, const ModuleString& modules) 
 
 }  // namespace
 
-Scene interpret(const LSystem& lsystem, const ModuleString& modules) {
+Scene interpret(const Model& model, const ModuleString& modules) {
+    return interpret(model.lsystem, model.view, modules);
+}
+
+Scene interpret(const LSystem& lsystem, const ViewSettings& view, const ModuleString& modules) {
     Scene scene;
     scene.segments.reserve(segmentsAtMost(lsystem, modules));
     turtle::SceneSink sink(scene);
-    turtle::TurtleMachine<turtle::SceneSink> machine(lsystem, sink);
+    turtle::TurtleMachine<turtle::SceneSink> machine(lsystem, view, sink);
     machine.run(modules);
     return scene;
 }
 
-void traceTurtle(const LSystem& lsystem, const ModuleString& modules,
+void traceTurtle(const Model& model, const ModuleString& modules, const std::vector<bool>& wanted,
+                 const std::function<void(std::size_t, const TurtleFrame&)>& visit) {
+    traceTurtle(model.lsystem, model.view, modules, wanted, visit);
+}
+
+void traceTurtle(const LSystem& lsystem, const ViewSettings& view, const ModuleString& modules,
                  const std::vector<bool>& wanted,
                  const std::function<void(std::size_t, const TurtleFrame&)>& visit) {
     turtle::NullSink sink;
-    turtle::TurtleMachine<turtle::NullSink> machine(lsystem, sink);
+    turtle::TurtleMachine<turtle::NullSink> machine(lsystem, view, sink);
     machine.run(modules, &wanted, &visit);
 }
 

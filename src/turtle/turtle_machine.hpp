@@ -19,6 +19,7 @@
 
 #include "graftal/environment.hpp"
 #include "graftal/lsystem.hpp"
+#include "graftal/model.hpp"
 #include "graftal/scene.hpp"
 
 namespace graftal::turtle {
@@ -148,8 +149,11 @@ using Visitor = std::function<void(std::size_t, const TurtleFrame&)>;
 template <class Sink>
 class TurtleMachine {
   public:
-    TurtleMachine(const LSystem& ls, Sink& sink) : ls_(ls), sink_(sink), ops_(opTable(ls)) {
-        const ViewSettings& v = ls.view;
+    TurtleMachine(const Model& model, Sink& sink)
+        : TurtleMachine(model.lsystem, model.view, sink) {}
+    TurtleMachine(const LSystem& ls, const ViewSettings& view, Sink& sink)
+        : ls_(ls), view_(view), sink_(sink), ops_(opTable(ls)) {
+        const ViewSettings& v = view_;
         double delta = v.angleDegrees * kPi / 180.0;
         deltaCos_ = std::cos(delta);
         deltaSin_ = std::sin(delta);
@@ -248,7 +252,7 @@ class TurtleMachine {
     }
 
     double lengthArg(std::span<const double> args) const {
-        return args.empty() ? ls_.view.stepLength : args[0];
+        return args.empty() ? view_.stepLength : args[0];
     }
 
     void apply(TurtleOp op, std::span<const double> args, std::size_t index, Symbol symbol) {
@@ -327,14 +331,12 @@ class TurtleMachine {
                 polygonOpenedAt_.pop_back();
                 break;
             case TurtleOp::WidthDown:
-                state_.width = args.empty()
-                                   ? state_.width * static_cast<float>(ls_.view.widthFactor)
-                                   : static_cast<float>(args[0]);
+                state_.width = args.empty() ? state_.width * static_cast<float>(view_.widthFactor)
+                                            : static_cast<float>(args[0]);
                 break;
             case TurtleOp::WidthUp:
-                state_.width = args.empty()
-                                   ? state_.width / static_cast<float>(ls_.view.widthFactor)
-                                   : static_cast<float>(args[0]);
+                state_.width = args.empty() ? state_.width / static_cast<float>(view_.widthFactor)
+                                            : static_cast<float>(args[0]);
                 break;
             case TurtleOp::ColorNext:
                 state_.color = args.empty() ? static_cast<std::uint16_t>(state_.color + 1)
@@ -383,6 +385,7 @@ class TurtleMachine {
     }
 
     const LSystem& ls_;
+    const ViewSettings& view_;
     Sink& sink_;
     std::array<TurtleOp, kMaxSymbols> ops_;
     double deltaCos_ = 1, deltaSin_ = 0, turnSign_ = 1;

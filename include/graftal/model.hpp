@@ -1,0 +1,47 @@
+// What a parse produces: the grammar (LSystem) and how it is drawn (ViewSettings), and the
+// entry points that return it with every diagnostic instead of throwing.
+#pragma once
+
+#include <filesystem>
+#include <ostream>
+#include <string_view>
+#include <vector>
+
+#include "graftal/diagnostics.hpp"
+#include "graftal/lsystem.hpp"
+#include "graftal/view_settings.hpp"
+
+namespace graftal {
+
+// An L-system model as a file describes it: the grammar the derivation engine runs and the
+// view the turtle draws it with. Rewriting needs only `lsystem`; drawing needs both.
+struct Model {
+    LSystem lsystem;
+    ViewSettings view;
+};
+
+// Prints the model back in the .l language (the grammar with its view settings).
+std::ostream& operator<<(std::ostream& os, const Model& model);
+
+// The outcome of a parse: the model as far as the parser got (complete when ok()), and
+// every diagnostic (errors, warnings, notes) in the order the parser found them.
+struct ParseResult {
+    Model model;
+    std::vector<Diagnostic> diagnostics;
+
+    bool ok() const;  // no diagnostic is an error
+    std::vector<Diagnostic> errors() const;
+    std::vector<Diagnostic> warnings() const;
+    // The model; throws Error carrying every error when the parse failed.
+    Model& orThrow() &;
+    Model orThrow() &&;
+};
+
+// Parses .l text (cpfg L-system files and pfg data files). Never throws for bad input.
+ParseResult parse(std::string_view text, const ParseOptions& options);
+
+// Reads and parses a file (ParseOptions::fileName defaults to the path). A file that cannot
+// be read is a diagnostic at line 0, not an exception.
+ParseResult loadModel(const std::filesystem::path& path, ParseOptions options = {});
+
+}  // namespace graftal

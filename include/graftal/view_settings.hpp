@@ -1,0 +1,50 @@
+// How a model is drawn: the view settings a .l file (and later a cpfg view file) may carry.
+// A separate value from the grammar (LSystem): the same grammar can be drawn with other
+// settings, and front ends set them by name through ParserTarget::viewSetting.
+#pragma once
+
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "graftal/diagnostics.hpp"
+#include "graftal/scene.hpp"
+
+namespace graftal {
+
+enum class LineStyle { Lines, Cylinders };
+
+// A predefined surface a file names: `surface: l leaf.s 0.5` places leaf.s at `~l`.
+struct SurfaceDeclaration {
+    std::string name;  // what follows ~ in module strings
+    std::string file;  // a .s file, relative to the L-system file, or a built-in name
+    double scale = 1;
+    SourceLocation location;
+};
+
+struct ViewSettings {
+    double angleDegrees = 90;                    // δ, the turn of + and -
+    double stepLength = 1;                       // length of F and f
+    double initialHeading = 0;                   // degrees counter-clockwise from up (+y)
+    double scaleFactor = 100;                    // pfg's picture size in percent of the window
+    bool clockwisePlus = false;                  // pfg data files: + turns right on screen
+    double initialWidth = 0.1;                   // stem diameter before any ! or #, in model units
+    double widthFactor = 0.7;                    // ! multiplies the width by this, # divides by it
+    LineStyle lineStyle = LineStyle::Cylinders;  // how 3D outputs draw segments
+    // Tropism (LSFP ch. 3.1): after each segment H turns toward `tropism` by e·|H × T|.
+    std::optional<Vec3> tropism;
+    double elasticity = 0;
+    // Camera and light for pictures of 3D scenes (cpfg's view-file names).
+    std::optional<Vec3> viewpoint, viewReferencePoint, upVector, lightDirection;
+    std::optional<double> fieldOfView;  // degrees
+    bool parallelProjection = false;
+    std::optional<Rgb> background;
+    std::string colorMap;        // a cpfg .map file, relative to the L-system file
+    int splineSubdivisions = 0;  // > 0: draw turtle paths as B-splines (LSFP Fig 2.10)
+    std::vector<SurfaceDeclaration> surfaces;
+};
+
+std::ostream& operator<<(std::ostream& os, const ViewSettings& v);
+
+}  // namespace graftal

@@ -1,0 +1,119 @@
+// Parsing to a Model with every diagnostic returned as a value.
+#include "graftal/model.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <sstream>
+
+#include "graftal/parser_target.hpp"
+#include "parser.hpp"
+#include "source_text.hpp"
+
+namespace graftal {
+
+namespace {
+
+bool isWordByte(char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.';
+}
+
+// A diagnostic that names only where the offending text starts ends with the token there:
+// a word (letters, digits, '_', '.') or else the run up to the next blank.
+void completeEnd(SourceLocation& loc, const SourceText& src) {
+    if (loc.line <= 0 || loc.endLine > 0 || loc.file != src.fileName) return;
+    auto it = std::lower_bound(src.lines.begin(), src.lines.end(), loc.line,
+                               [](const SourceLine& l, int n) { return l.number < n; });
+    loc.endLine = loc.line;
+    loc.endColumn = loc.column + 1;
+    if (it == src.lines.end() || it->number != loc.line || loc.column < 1) return;
+    const std::string& t = it->text;
+    std::size_t b = static_cast<std::size_t>(loc.column - 1);
+    if (b >= t.size()) return;
+    std::size_t e = b + 1;
+    if (isWordByte(t[b]))
+        while (e < t.size() && isWordByte(t[e])) ++e;
+    else
+        while (e < t.size() && !std::isspace(static_cast<unsigned char>(t[e]))) ++e;
+    loc.endColumn = static_cast<int>(e) + 1;
+}
+
+std::vector<Diagnostic> withSeverity(const std::vector<Diagnostic>& ds, Severity s) {
+    std::vector<Diagnostic> out;
+    for (const auto& d : ds)
+        if (d.severity == s) out.push_back(d);
+    return out;
+}
+
+}  // namespace
+
+bool ParseResult::ok() const {
+    return std::none_of(diagnostics.begin(), diagnostics.end(),
+                        [](const Diagnostic& d) { return d.severity == Severity::Error; });
+}
+
+std::vector<Diagnostic> ParseResult::errors() const {
+    return withSeverity(diagnostics, Severity::Error);
+}
+
+std::vector<Diagnostic> ParseResult::warnings() const {
+    return withSeverity(diagnostics, Severity::Warning);
+}
+
+Model& ParseResult::orThrow() & {
+    if (!ok()) throw Error(errors());
+    return model;
+}
+
+Model ParseResult::orThrow() && {
+    if (!ok()) throw Error(errors());
+    return std::move(model);
+}
+
+void parseInto(std::string_view text, const ParseOptions& options, ParserTarget& target,
+               DiagnosticList& diagnostics) {
+    DiagnosticList diags;
+    SourceText src;
+    if (prepareSource(text, options.fileName, src, diags))
+        parsing::Parser(src, options, diags, target).run();
+    for (Diagnostic d : diags.items()) {
+        completeEnd(d.location, src);
+        diagnostics.add(std::move(d));
+    }
+}
+
+ParseResult parse(std::string_view text, const ParseOptions& options) {
+    ParseResult result;
+    DiagnosticList diags;
+    ModelBuilder builder(diags);
+    builder.model().lsystem.name = builder.model().lsystem.file = options.fileName;
+    parseInto(text, options, builder, diags);
+    result.model = std::move(builder.model());
+    result.diagnostics = diags.items();
+    return result;
+}
+
+ParseResult loadModel(const std::filesystem::path& path, ParseOptions options) {
+    if (options.fileName.empty()) options.fileName = path.string();
+    auto failure = [&](const std::string& message) {
+        ParseResult r;
+        r.model.lsystem.name = r.model.lsystem.file = options.fileName;
+        r.diagnostics.push_back({Severity::Error, SourceLocation{path.string(), 0, 0}, message});
+        return r;
+    };
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        return failure("is a directory, expected an L-system file");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return failure("cannot open the file (does it exist?)");
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    return parse(ss.str(), options);
+}
+
+std::ostream& operator<<(std::ostream& os, const Model& model) {
+    model.lsystem.print(os, &model.view);
+    return os;
+}
+
+}  // namespace graftal

@@ -1,0 +1,116 @@
+// The standard ParserTarget: the calls of a front end become a Model.
+#include <algorithm>
+
+#include "graftal/parser_target.hpp"
+
+namespace graftal {
+
+void ModelBuilder::beginSource(const std::string& file, bool legacyPfg) {
+    model_.lsystem.name = file;
+    model_.lsystem.file = file;
+    model_.lsystem.legacyPfg = legacyPfg;
+    model_.view.clockwisePlus = legacyPfg;  // pfg's + turns right on screen
+}
+
+void ModelBuilder::name(const std::string& name, const SourceLocation&) {
+    model_.lsystem.name = name;
+}
+
+void ModelBuilder::define(const std::string& name, const std::string& value,
+                          const SourceLocation&) {
+    model_.lsystem.defines[name] = value;
+}
+
+Symbol ModelBuilder::declareModule(std::string_view name, const SourceLocation&) {
+    return model_.lsystem.symbols.declare(name);
+}
+
+void ModelBuilder::axiom(ModuleString axiom, const SourceLocation&) {
+    model_.lsystem.axiom = std::move(axiom);
+}
+
+void ModelBuilder::production(ProductionGroup group, Production production) {
+    LSystem& ls = model_.lsystem;
+    (group == ProductionGroup::Decomposition  ? ls.decomposition
+     : group == ProductionGroup::Homomorphism ? ls.homomorphism
+                                              : ls.productions)
+        .push_back(std::move(production));
+}
+
+void ModelBuilder::maximumDepth(ProductionGroup group, int depth, const SourceLocation&) {
+    (group == ProductionGroup::Decomposition ? model_.lsystem.decompositionDepth
+                                             : model_.lsystem.homomorphismDepth) = depth;
+}
+
+void ModelBuilder::table(const std::string& name, const SourceLocation&) {
+    model_.lsystem.tableNames.push_back(name);
+}
+
+void ModelBuilder::tableSchedule(std::vector<ScheduleEntry> entries, bool repeats,
+                                 const SourceLocation&) {
+    model_.lsystem.schedule = std::move(entries);
+    model_.lsystem.scheduleRepeats = repeats;
+}
+
+void ModelBuilder::derivationLength(int steps, const SourceLocation&) {
+    model_.lsystem.derivationLength = steps;
+}
+
+void ModelBuilder::seed(std::uint64_t seed, const SourceLocation&) {
+    model_.lsystem.seed = seed;
+}
+
+void ModelBuilder::ignore(const std::vector<Symbol>& symbols, bool consider,
+                          const SourceLocation&) {
+    std::vector<bool>& ignored = model_.lsystem.ignored;
+    if (consider && !considered_) std::fill(ignored.begin(), ignored.end(), true);
+    considered_ = considered_ || consider;
+    for (Symbol s : symbols) ignored[s] = !consider;
+}
+
+void ModelBuilder::environmentLine(EnvironmentLine line) {
+    model_.lsystem.environment.push_back(std::move(line));
+}
+
+void ModelBuilder::viewSetting(const ViewSetting& setting) {
+    std::string problem = applyViewSetting(model_.view, setting);
+    if (!problem.empty()) diags_.error(setting.location, std::move(problem));
+}
+
+void ModelBuilder::endOfInput(const SourceLocation&) {
+    warnShadowedProductions();
+}
+
+namespace {
+
+bool samePattern(const std::vector<ModulePattern>& a, const std::vector<ModulePattern>& b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+        if (a[i].symbol != b[i].symbol || a[i].formals.size() != b[i].formals.size()) return false;
+    return true;
+}
+
+}  // namespace
+
+// First applicable production wins; a context-free, unconditional production listed
+// before a context-sensitive one for the same predecessor hides it for good.
+void ModelBuilder::warnShadowedProductions() {
+    const auto& ps = model_.lsystem.productions;
+    for (std::size_t j = 0; j < ps.size(); ++j) {
+        if (!ps[j].hasContext()) continue;
+        for (std::size_t i = 0; i < j; ++i) {
+            if (ps[i].hasContext() || ps[i].condition || ps[i].probability) continue;
+            if (ps[i].table != -1 && ps[i].table != ps[j].table) continue;
+            if (!samePattern(ps[i].predecessor, ps[j].predecessor)) continue;
+            diags_.warning(ps[j].location,
+                           "this context-sensitive production is never applied: the "
+                           "context-free production on line " +
+                               std::to_string(ps[i].location.line) +
+                               " has the same predecessor and comes first (list "
+                               "context-sensitive productions first)");
+            break;
+        }
+    }
+}
+
+}  // namespace graftal

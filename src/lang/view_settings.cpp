@@ -1,0 +1,172 @@
+// The named view settings: the checks every front end's values pass through.
+#include <cmath>
+#include <cstdlib>
+
+#include "graftal/parser_target.hpp"
+
+namespace graftal {
+
+namespace {
+
+bool isZero(const Vec3& v) {
+    return v.x == 0 && v.y == 0 && v.z == 0;
+}
+
+std::string lowerCase(std::string s) {
+    for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+}
+
+// surface: NAME FILE [SCALE]
+std::string applySurface(ViewSettings& view, const std::string& text, const SourceLocation& where) {
+    std::vector<std::string> words;
+    std::string cur;
+    for (char c : text) {
+        if (std::isspace(static_cast<unsigned char>(c))) {
+            if (!cur.empty()) words.push_back(std::move(cur)), cur.clear();
+        } else {
+            cur += c;
+        }
+    }
+    if (!cur.empty()) words.push_back(cur);
+    if (words.size() < 2 || words.size() > 3)
+        return "expected 'surface: NAME FILE [SCALE]', e.g. 'surface: l leaf.s 0.5'";
+    SurfaceDeclaration s{words[0], words[1], 1, where};
+    if (words.size() == 3) {
+        char* end = nullptr;
+        s.scale = std::strtod(words[2].c_str(), &end);
+        if (*end || !(s.scale > 0)) return "the surface scale must be a positive number";
+    }
+    view.surfaces.push_back(std::move(s));
+    return "";
+}
+
+}  // namespace
+
+const std::vector<std::string>& viewSettingNames() {
+    static const std::vector<std::string> names = {
+        "angle factor",
+        "angle increment",
+        "scale factor",
+        "initial heading",
+        "step length",
+        "viewpoint",
+        "view reference point",
+        "up vector",
+        "light direction",
+        "tropism direction",
+        "tropism elasticity",
+        "initial elasticity",
+        "elasticity",
+        "projection",
+        "field of view",
+        "line style",
+        "spline subdivisions",
+        "line width",
+        "width factor",
+        "background",
+        "color map",
+        "colour map",
+        "surface",
+    };
+    return names;
+}
+
+std::string applyViewSetting(ViewSettings& view, const ViewSetting& setting) {
+    const std::string& kw = setting.name;
+    const double* number = std::get_if<double>(&setting.value);
+    const Vec3* vector = std::get_if<Vec3>(&setting.value);
+    const std::string* text = std::get_if<std::string>(&setting.value);
+    if (kw == "viewpoint" || kw == "view reference point" || kw == "up vector" ||
+        kw == "light direction" || kw == "tropism direction") {
+        if (!vector) return "'" + kw + ":' expects three numbers x, y, z";
+        const Vec3& v = *vector;
+        if (kw == "viewpoint") {
+            view.viewpoint = v;
+        } else if (kw == "view reference point") {
+            view.viewReferencePoint = v;
+        } else if (kw == "up vector") {
+            if (isZero(v)) return "the up vector must not be zero";
+            view.upVector = v;
+        } else if (kw == "light direction") {
+            if (isZero(v)) return "the light direction must not be zero";
+            view.lightDirection = v;
+        } else {
+            double n = std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
+            if (n == 0) return "the tropism direction must not be zero";
+            view.tropism = Vec3{v.x / n, v.y / n, v.z / n};
+        }
+        return "";
+    }
+    if (kw == "projection" || kw == "line style" || kw == "background" || kw == "color map" ||
+        kw == "colour map" || kw == "surface") {
+        if (!text) return "'" + kw + ":' expects a word or a file name, not a number";
+        std::string word = lowerCase(*text);
+        if (kw == "projection") {
+            if (word == "parallel" || word == "orthographic")
+                view.parallelProjection = true;
+            else if (word == "perspective")
+                view.parallelProjection = false;
+            else
+                return "projection is 'perspective' or 'parallel', not '" + *text + "'";
+        } else if (kw == "line style") {
+            if (word == "cylinder" || word == "cylinders" || word == "polygon")
+                view.lineStyle = LineStyle::Cylinders;
+            else if (word == "lines" || word == "line" || word == "pixel")
+                view.lineStyle = LineStyle::Lines;
+            else
+                return "line style is 'cylinder' or 'lines', not '" + *text + "'";
+        } else if (kw == "background") {
+            std::string hex = text->substr(text->starts_with("#") ? 1 : 0);
+            bool ok = hex.size() == 6 &&
+                      hex.find_first_not_of("0123456789abcdefABCDEF") == std::string::npos;
+            if (!ok) return "background is a colour #rrggbb";
+            unsigned c = static_cast<unsigned>(std::stoul(hex, nullptr, 16));
+            view.background =
+                Rgb{((c >> 16) & 255) / 255.0f, ((c >> 8) & 255) / 255.0f, (c & 255) / 255.0f};
+        } else if (kw == "surface") {
+            return applySurface(view, *text, setting.location);
+        } else {
+            if (text->empty()) return "expected a .map file name";
+            view.colorMap = *text;
+        }
+        return "";
+    }
+    bool known = false;
+    for (const auto& n : viewSettingNames()) known = known || n == kw;
+    if (!known) return "unknown view setting '" + kw + "'";
+    if (!number) return "'" + kw + ":' expects a number";
+    double d = *number;
+    if (kw == "angle factor") {
+        if (d <= 0) return "angle factor must be positive (delta = 360 / factor)";
+        view.angleDegrees = 360.0 / d;
+    } else if (kw == "angle increment") {
+        view.angleDegrees = d;
+    } else if (kw == "scale factor") {
+        if (d <= 0) return "scale factor must be positive";
+        view.scaleFactor = d;
+    } else if (kw == "initial heading") {
+        view.initialHeading = d;
+    } else if (kw == "step length") {
+        if (d <= 0) return "step length must be positive";
+        view.stepLength = d;
+    } else if (kw == "tropism elasticity" || kw == "initial elasticity" || kw == "elasticity") {
+        view.elasticity = d;
+    } else if (kw == "field of view") {
+        if (d <= 0 || d >= 180) return "field of view must be between 0 and 180 degrees";
+        view.fieldOfView = d;
+    } else if (kw == "spline subdivisions") {
+        if (d < 0 || d > 64 || d != std::floor(d))
+            return "spline subdivisions is a whole number from 0 (straight lines) to 64";
+        view.splineSubdivisions = static_cast<int>(d);
+    } else if (kw == "line width") {
+        if (d <= 0) return "line width must be positive (the stem diameter in model units)";
+        view.initialWidth = d;
+    } else if (kw == "width factor") {
+        if (d <= 0 || d >= 1) return "width factor must be between 0 and 1 (what ! multiplies by)";
+        view.widthFactor = d;
+    }
+    return "";
+}
+
+}  // namespace graftal
