@@ -34,7 +34,7 @@ std::string environmentError(const std::string& text) {
 // The message of the Error a derivation throws, or "" when it succeeds.
 std::string derivationError(const LSystem& ls, int steps, DerivationOptions o = {}) {
     try {
-        derive(ls, steps, o);
+        deriveWithQueries(ls, steps, o);
     } catch (const Error& e) {
         return e.diagnostics().front().toString();
     }
@@ -87,7 +87,7 @@ TEST(Environment, ReceivesFramesInStringOrderAndItsAnswersAreDerived) {
     RecordingEnvironment env;
     DerivationOptions o;
     o.environment = &env;
-    EXPECT_EQ(derive(ls, 0, o).toString(ls.symbols), "F?E(0)+F(2)?E(1,1)?E");
+    EXPECT_EQ(deriveWithQueries(ls, 0, o).toString(ls.symbols), "F?E(0)+F(2)?E(1,1)?E");
     ASSERT_EQ(env.seen.size(), 3u);
     EXPECT_EQ(env.seen[0].step, 0);
     EXPECT_EQ(env.seen[0].module, 1u) << "the module's position in the string";
@@ -110,7 +110,7 @@ TEST(Environment, IsAskedAfterEveryStepAndProductionsReadTheAnswers) {
     RecordingEnvironment env;
     DerivationOptions o;
     o.environment = &env;
-    EXPECT_EQ(derive(ls, 4, o).toString(ls.symbols), "FFB?E(400)");
+    EXPECT_EQ(deriveWithQueries(ls, 4, o).toString(ls.symbols), "FFB?E(400)");
     ASSERT_EQ(env.seen.size(), 5u) << "once for the axiom and once per step";
     for (int s = 0; s <= 4; ++s) EXPECT_EQ(env.seen[s].step, s);
     EXPECT_EQ(env.seen[3].params, std::vector<double>{200}) << "its own answer of step 2";
@@ -123,7 +123,7 @@ TEST(Environment, OptionsEnvironmentReplacesTheFilesOne) {
     RecordingEnvironment env;
     DerivationOptions o;
     o.environment = &env;
-    EXPECT_EQ(derive(ls, 3, o).toString(ls.symbols), "?E(300)");
+    EXPECT_EQ(deriveWithQueries(ls, 3, o).toString(ls.symbols), "?E(300)");
 }
 
 TEST(Environment, NoEnvironmentLinesMeansNoEnvironment) {
@@ -153,7 +153,7 @@ TEST(LectureOpenLSystem, DerivesThePrintedStringsExactly) {
     EXPECT_EQ(derived(ls, 2), "F(0,0)F(0,1)F(0,2)A?E(2)");
     EXPECT_EQ(derived(ls, 3), "F(0,0)F(0,1)F(0,2)?E(3)");
     EXPECT_EQ(derived(ls, 4), "F(0,0)F(0,1)F(0,2)?E(4)") << "the plant stops; time goes on";
-    Scene scene = interpret(ls, applyHomomorphism(ls, derive(ls)));
+    Scene scene = interpret(ls, applyHomomorphism(ls, deriveWithQueries(ls)));
     Bounds b = scene.bounds();
     EXPECT_NEAR(b.max.y, 2, 1e-12) << "a stem 2 units high";
     EXPECT_NEAR(b.min.x, 0, 1e-12);
@@ -236,7 +236,7 @@ TEST(ObstacleEnvironment, TheAvoidanceExampleNeverGrowsIntoAnObstacle) {
         return n;
     };
 
-    ModuleString s = derive(ls);
+    ModuleString s = deriveWithQueries(ls);
     Scene scene = interpret(ls, applyHomomorphism(ls, s));
     for (const Segment& seg : scene.segments) {
         EXPECT_FALSE(inside(seg.a) || inside(seg.b))
@@ -247,7 +247,7 @@ TEST(ObstacleEnvironment, TheAvoidanceExampleNeverGrowsIntoAnObstacle) {
     EXPECT_GE(count(s, ls, "A("), 10u) << "others grew on around the obstacles";
 
     ls.environment.clear();  // without its environment the same shrub grows through them
-    Scene blind = interpret(ls, applyHomomorphism(ls, derive(ls)));
+    Scene blind = interpret(ls, applyHomomorphism(ls, deriveWithQueries(ls)));
     std::size_t entering = 0;
     for (const Segment& seg : blind.segments) entering += inside(seg.b);
     EXPECT_GT(entering, 50u);
@@ -293,7 +293,7 @@ TEST(OccupancyEnvironment, RoundingNoiseDoesNotMoveAPointAcrossACellBoundary) {
 
 TEST(OccupancyEnvironment, CrowdedApicesStopAndThePlantDiffersFromTheOpenOne) {
     LSystem ls = loadLSystem(kExamples / "open-crowding-stops-branches.l");
-    ModuleString s = derive(ls);
+    ModuleString s = deriveWithQueries(ls);
     std::string text = s.toString(ls.symbols);
     EXPECT_EQ(text.find("A("), std::string::npos) << "every apex has stopped by itself";
     std::size_t leaves = std::count(text.begin(), text.end(), 'V');
@@ -302,7 +302,7 @@ TEST(OccupancyEnvironment, CrowdedApicesStopAndThePlantDiffersFromTheOpenOne) {
 
     LSystem open = ls;
     open.environment.clear();
-    Scene free = interpret(open, applyHomomorphism(open, derive(open)));
+    Scene free = interpret(open, applyHomomorphism(open, deriveWithQueries(open)));
     EXPECT_EQ(free.segments.size(), (std::size_t(1) << (ls.derivationLength + 1)) - 1)
         << "without the environment: a full binary tree";
     EXPECT_LT(crowded.segments.size() * 20, free.segments.size());
@@ -314,8 +314,8 @@ TEST(OccupancyEnvironment, AnswersDoNotDependOnTheThreadCount) {
     one.threads = 1;
     many.threads = 7;
     for (int n : {6, 9, 12})
-        EXPECT_EQ(derive(ls, n, one).toString(ls.symbols),
-                  derive(ls, n, many).toString(ls.symbols));
+        EXPECT_EQ(deriveWithQueries(ls, n, one).toString(ls.symbols),
+                  deriveWithQueries(ls, n, many).toString(ls.symbols));
 }
 
 // --- process -------------------------------------------------------------------------
@@ -366,7 +366,7 @@ TEST(ProcessEnvironment, FromCppWithMakeExternalProcessEnvironment) {
     LSystem ls = parse("Lsystem: 1\naxiom: ?E(0) f ?E(0)\nA --> A\nendlsystem\n");
     DerivationOptions o;
     o.environment = env.get();
-    EXPECT_EQ(derive(ls, 2, o).toString(ls.symbols), "?E(20)f?E(22)")
+    EXPECT_EQ(deriveWithQueries(ls, 2, o).toString(ls.symbols), "?E(20)f?E(22)")
         << "the step number followed by the module index";
 }
 

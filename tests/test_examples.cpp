@@ -34,7 +34,7 @@ TEST(Examples, EveryExampleParsesDerivesAndDraws) {
     for (const auto& f : files) {
         SCOPED_TRACE(f.filename().string());
         LSystem ls = loadLSystem(f);
-        ModuleString s = derive(ls);
+        ModuleString s = deriveWithQueries(ls);
         EXPECT_GT(s.size(), 0u);
         EXPECT_LT(s.size(), 20'000'000u) << "examples stay quick";
         ModuleString drawn = applyHomomorphism(ls, s);
@@ -60,7 +60,7 @@ TEST(Examples, MatchIndependentReference) {
         for (const auto& st : ex["steps"]) {
             int n = st["n"];
             SCOPED_TRACE("n=" + std::to_string(n));
-            ModuleString s = derive(ls, n);
+            ModuleString s = deriveWithQueries(ls, n);
             EXPECT_EQ(s.size(), st["modules"].get<std::size_t>());
             if (st.contains("string")) {
                 EXPECT_EQ(s.toString(ls.symbols), st["string"].get<std::string>());

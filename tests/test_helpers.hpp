@@ -14,7 +14,7 @@ inline LSystem parse(const std::string& text, const std::string& name = "test.l"
 }
 
 inline std::string derived(const LSystem& ls, int steps) {
-    return derive(ls, steps).toString(ls.symbols);
+    return deriveWithQueries(ls, steps).toString(ls.symbols);
 }
 
 inline std::string derived(const std::string& text, int steps) {

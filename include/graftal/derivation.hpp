@@ -6,11 +6,23 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <vector>
 
+#include "graftal/environment.hpp"
 #include "graftal/lsystem.hpp"
 #include "graftal/module_string.hpp"
+#include "graftal/vec3.hpp"
 
 namespace graftal {
+
+// Walks the turtle over `modules` (the string after the homomorphism) and calls
+// visit(i, frame) for every module whose symbol is flagged in `wanted` (indexed by symbol
+// id): how a derivation learns where its query modules ?P ?H ?L ?U and ?E are. The turtle
+// layer supplies one (turtleQueryResolver() in turtle.hpp); the derivation does not know
+// the turtle.
+using QueryResolver = std::function<void(
+    const LSystem& lsystem, const ModuleString& modules, const std::vector<bool>& wanted,
+    const std::function<void(std::size_t, const TurtleFrame&)>& visit)>;
 
 struct DerivationOptions {
     // Bytes the module strings may take; a step that would need more is refused before
@@ -22,6 +34,8 @@ struct DerivationOptions {
     Environment* environment = nullptr;
     // Called after every step with the step number and the string's size (for progress).
     std::function<void(int step, std::size_t modules)> progress;
+    // Fills query modules after every step. Empty: a string with query modules is an error.
+    QueryResolver queryResolver;
 };
 
 class Derivation {

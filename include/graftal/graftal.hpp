@@ -1,12 +1,15 @@
 // The public API of graftal: text -> LSystem -> module string -> geometry -> output.
 #pragma once
 
+#include "graftal/atomic_file.hpp"
 #include "graftal/bspline.hpp"
 #include "graftal/color_map.hpp"
 #include "graftal/derivation.hpp"
 #include "graftal/diagnostics.hpp"
 #include "graftal/environment.hpp"
+#include "graftal/environment_line.hpp"
 #include "graftal/expression.hpp"
+#include "graftal/file_format.hpp"
 #include "graftal/growth.hpp"
 #include "graftal/lsystem.hpp"
 #include "graftal/mesh.hpp"
@@ -14,7 +17,11 @@
 #include "graftal/output.hpp"
 #include "graftal/projection.hpp"
 #include "graftal/render3d.hpp"
+#include "graftal/rgb.hpp"
 #include "graftal/scene.hpp"
+#include "graftal/streamed_interpretation.hpp"
+#include "graftal/streamed_picture.hpp"
 #include "graftal/streaming.hpp"
 #include "graftal/surface.hpp"
 #include "graftal/turtle.hpp"
+#include "graftal/vec3.hpp"

@@ -4,10 +4,11 @@
 #include <functional>
 #include <vector>
 
-#include "graftal/environment.hpp"
+#include "graftal/derivation.hpp"
 #include "graftal/lsystem.hpp"
 #include "graftal/module_string.hpp"
 #include "graftal/scene.hpp"
+#include "graftal/vec3.hpp"
 
 namespace graftal {
 
@@ -20,5 +21,12 @@ Scene interpret(const LSystem& lsystem, const ModuleString& modules);
 void traceTurtle(const LSystem& lsystem, const ModuleString& modules,
                  const std::vector<bool>& wanted,
                  const std::function<void(std::size_t, const TurtleFrame&)>& visit);
+
+// traceTurtle as a derivation's QueryResolver: the turtle answers query modules.
+QueryResolver turtleQueryResolver();
+
+// derive() with the turtle answering query modules (unless `options` brings a resolver).
+ModuleString deriveWithQueries(const LSystem& lsystem, int steps = -1,
+                               DerivationOptions options = {});
 
 }  // namespace graftal

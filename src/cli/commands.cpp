@@ -14,6 +14,7 @@
 #include "graftal/derivation.hpp"
 #include "graftal/growth.hpp"
 #include "graftal/lsystem.hpp"
+#include "graftal/streamed_interpretation.hpp"
 #include "graftal/streaming.hpp"
 #include "graftal/turtle.hpp"
 
@@ -65,6 +66,7 @@ DerivationOptions derivationOptions(const InputOptions& in) {
     opts.memoryLimit = in.memoryLimit;
     opts.seed = in.seed;
     opts.threads = in.threads;
+    opts.queryResolver = turtleQueryResolver();
     // Progress for long derivations, only where a person watches (a terminal), and only
     // once a derivation has taken more than a second.
     if (!in.quiet && ::isatty(2)) {

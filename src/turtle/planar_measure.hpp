@@ -16,7 +16,7 @@
 
 #include "graftal/lsystem.hpp"
 #include "graftal/module_string.hpp"
-#include "graftal/streaming.hpp"
+#include "graftal/streamed_interpretation.hpp"
 
 namespace graftal::turtle {
 

@@ -239,13 +239,13 @@ bool inside(const Bounds& b, const Vec3& p, double r) {
 
 }  // namespace
 
-StreamedMeasure measureSummarised(const LSystem& ls, const SubtreeSummaries& sums,
-                                  const RenderOptions& render, double pixelTolerance) {
+StreamedMeasure measureSummarised(const LSystem& ls, const SubtreeSummaries& sums, int imageSide,
+                                  double pixelTolerance) {
     StreamedMeasure result;
     result.symbolCounts.assign(ls.symbols.size(), 0);
     MeasureSink sink(result);
     turtle::TurtleMachine<MeasureSink> machine(ls, sink);
-    const double pixels = std::max(1, std::max(render.width, render.height));
+    const double pixels = std::max(1, imageSide);
     walk(sums, machine, [&](const SubtreeMotion& m) {
         turtle::TurtleState& t = machine.state();
         const Bounds& b = result.bounds;
@@ -272,22 +272,16 @@ StreamedMeasure measureSummarised(const LSystem& ls, const SubtreeSummaries& sum
     return result;
 }
 
-void renderSummarisedPng(const LSystem& ls, const SubtreeSummaries& sums,
-                         const RenderOptions& render, const std::filesystem::path& path,
-                         double dotRadius, double pixelTolerance) {
-    StreamedMeasure measure = measureSummarised(ls, sums, render, pixelTolerance);
-    StreamedPng png(render, measure.bounds, measure.ink, measure.segments > 0, measure.baseWidth,
-                    Scene::defaultPalette(), path);
-    const ImageTransform transform = ImageTransform::fit(measure.bounds, render);
-    PictureSink sink(png);
-    turtle::TurtleMachine<PictureSink> machine(ls, sink);
+void drawSummarised(const LSystem& ls, const SubtreeSummaries& sums, double scale, double dotRadius,
+                    StreamedDrawing& drawing) {
+    DrawingSink sink(drawing);
+    turtle::TurtleMachine<DrawingSink> machine(ls, sink);
     walk(sums, machine, [&](const SubtreeMotion& m) {
-        if (m.segments > 0 && m.radius * transform.scale > dotRadius) return false;
+        if (m.segments > 0 && m.radius * scale > dotRadius) return false;
         Segment chord = jump(machine.state(), m);
-        if (m.segments > 0) png.segment(chord);
+        if (m.segments > 0) drawing.segment(chord);
         return true;
     });
-    png.finish();
 }
 
 }  // namespace graftal

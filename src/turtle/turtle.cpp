@@ -37,4 +37,16 @@ void traceTurtle(const LSystem& lsystem, const ModuleString& modules,
     machine.run(modules, &wanted, &visit);
 }
 
+QueryResolver turtleQueryResolver() {
+    return [](const LSystem& lsystem, const ModuleString& modules, const std::vector<bool>& wanted,
+              const std::function<void(std::size_t, const TurtleFrame&)>& visit) {
+        traceTurtle(lsystem, modules, wanted, visit);
+    };
+}
+
+ModuleString deriveWithQueries(const LSystem& lsystem, int steps, DerivationOptions options) {
+    if (!options.queryResolver) options.queryResolver = turtleQueryResolver();
+    return derive(lsystem, steps, std::move(options));
+}
+
 }  // namespace graftal

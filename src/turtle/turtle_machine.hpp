@@ -17,9 +17,9 @@
 #include <string>
 #include <vector>
 
-#include "graftal/environment.hpp"
 #include "graftal/lsystem.hpp"
 #include "graftal/scene.hpp"
+#include "graftal/vec3.hpp"
 
 namespace graftal::turtle {
 

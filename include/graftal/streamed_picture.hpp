@@ -1,0 +1,21 @@
+// A 2D PNG drawn while the derivation streams (streamed_interpretation.hpp), for strings
+// too large to hold: memory stays proportional to the derivation depth and the image.
+#pragma once
+
+#include <filesystem>
+
+#include "graftal/derivation.hpp"
+#include "graftal/output.hpp"
+
+namespace graftal {
+
+// True when renderStreamedPng draws this derivation from subtree summaries: a picture with
+// far more segments than pixels, whose subtrees smaller than a pixel are drawn as one
+// stroke each, so that its time grows with the image rather than with the string.
+bool streamedPictureIsSummarised(const LSystem& lsystem, int steps);
+
+// A 2D PNG of the derivation drawn while streaming (two passes: measure, then draw).
+void renderStreamedPng(const LSystem& lsystem, int steps, const DerivationOptions& options,
+                       const RenderOptions& render, const std::filesystem::path& path);
+
+}  // namespace graftal
