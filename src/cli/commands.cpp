@@ -219,15 +219,7 @@ class PrintingSink : public ModuleSink {
     explicit PrintingSink(const SymbolTable& t) : table_(t) { buffer_.reserve(1 << 16); }
     ~PrintingSink() override { flush(); }
     void module(Symbol s, std::span<const double> params) override {
-        buffer_ += table_.name(s);
-        if (!params.empty()) {
-            buffer_ += '(';
-            for (std::size_t k = 0; k < params.size(); ++k) {
-                if (k) buffer_ += ',';
-                buffer_ += formatNumber(params[k]);
-            }
-            buffer_ += ')';
-        }
+        appendModuleText(buffer_, table_, s, params);
         if (buffer_.size() > (1 << 16) - 512) flush();
     }
     void flush() {

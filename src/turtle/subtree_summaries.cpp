@@ -119,9 +119,7 @@ SubtreeMotion SubtreeSummaries::leaf(Symbol symbol) const {
     const ViewSettings& v = ls_.view;
     double delta = v.angleDegrees * turtle::kPi / 180.0;
     double turn = v.clockwisePlus ? -1.0 : 1.0;
-    TurtleOp op = symbol < kFirstDeclaredSymbol ? turtle::opFor(symbol) : TurtleOp::None;
-    if (symbol >= kFirstDeclaredSymbol && ls_.symbols.name(symbol).starts_with("~"))
-        op = TurtleOp::Surface;
+    const TurtleOp op = turtle::opOf(ls_, symbol);
     switch (op) {
         case TurtleOp::None:
             break;
