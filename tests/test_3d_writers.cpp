@@ -24,10 +24,10 @@
 #include <tuple>
 #include <vector>
 
-#include "geometry/mesh_math.hpp"
 #include "graftal/graftal.hpp"
 #include "graftal/mesh.hpp"
 #include "graftal/surface.hpp"
+#include "graftal/vec3.hpp"
 #include "process.hpp"
 
 namespace {
@@ -48,16 +48,14 @@ using graftal::testing::TempDir;
 // branches, leaves as polygons, predefined surfaces at the tips, several colours (one of
 // them past the end of the palette, which wraps around).
 
-using graftal::meshing::Vector3;
-
 // Rodrigues: v rotated about the unit axis k by `degrees`.
-Vector3 rotate(const Vector3& v, const Vector3& k, double degrees) {
+Vec3 rotate(const Vec3& v, const Vec3& k, double degrees) {
     const double a = degrees * std::numbers::pi / 180, c = std::cos(a), s = std::sin(a);
     return c * v + s * cross(k, v) + (dot(k, v) * (1 - c)) * k;
 }
 
 struct Turtle {
-    Vector3 p{0, 0, 0}, h{0, 1, 0}, l{-1, 0, 0}, u{0, 0, 1};
+    Vec3 p{0, 0, 0}, h{0, 1, 0}, l{-1, 0, 0}, u{0, 0, 1};
     void pitch(double deg) {
         h = rotate(h, l, deg);
         u = rotate(u, l, deg);
@@ -71,14 +69,14 @@ struct Turtle {
 void grow(Scene& scene, Turtle t, int depth, float width) {
     std::uint32_t previous = graftal::kNoSegment;
     for (int i = 0; i < 4; ++i) {
-        const Vector3 q = t.p + (0.4 * (depth + 1)) * t.h;
+        const Vec3 q = t.p + (0.4 * (depth + 1)) * t.h;
         Segment s;
-        s.a = t.p.toVec3();
-        s.b = q.toVec3();
+        s.a = t.p;
+        s.b = q;
         s.width = width;
         s.previous = previous;
         s.color = depth >= 2 ? 5 : 0;
-        s.up = t.u.toVec3();
+        s.up = t.u;
         scene.segments.push_back(s);
         previous = static_cast<std::uint32_t>(scene.segments.size() - 1);
         t.p = q;
@@ -102,14 +100,14 @@ void grow(Scene& scene, Turtle t, int depth, float width) {
                         {0.8, -0.12},
                         {0.5, -0.05},
                         {0.3, -0.15}})
-        leaf.push_back((t.p + (0.5 * a) * t.h + (0.5 * b) * t.l).toVec3());
+        leaf.push_back((t.p + (0.5 * a) * t.h + (0.5 * b) * t.l));
     scene.addPolygon(leaf, scene.polygonCount() % 2 ? 1 : 17);
     graftal::SurfaceInstance surface;
     surface.surface = 0;
-    surface.origin = t.p.toVec3();
-    surface.heading = t.h.toVec3();
-    surface.left = t.l.toVec3();
-    surface.up = t.u.toVec3();
+    surface.origin = t.p;
+    surface.heading = t.h;
+    surface.left = t.l;
+    surface.up = t.u;
     surface.scale = 0.3;
     surface.color = 3;
     scene.surfaces.push_back(surface);

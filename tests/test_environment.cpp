@@ -36,7 +36,7 @@ std::string environmentError(const std::string& text) {
 // The message of the Error a derivation throws, or "" when it succeeds.
 std::string derivationError(const Model& ls, int steps, DerivationOptions o = {}) {
     try {
-        derive(ls, steps, o);
+        deriveWithQueries(ls, steps, o);
     } catch (const Error& e) {
         return e.diagnostics().front().toString();
     }
@@ -89,7 +89,7 @@ TEST(Environment, ReceivesFramesInStringOrderAndItsAnswersAreDerived) {
     RecordingEnvironment env;
     DerivationOptions o;
     o.environment = &env;
-    EXPECT_EQ(derive(ls, 0, o).toString(ls.lsystem.symbols), "F?E(0)+F(2)?E(1,1)?E");
+    EXPECT_EQ(deriveWithQueries(ls, 0, o).toString(ls.lsystem.symbols), "F?E(0)+F(2)?E(1,1)?E");
     ASSERT_EQ(env.seen.size(), 3u);
     EXPECT_EQ(env.seen[0].step, 0);
     EXPECT_EQ(env.seen[0].module, 1u) << "the module's position in the string";
@@ -112,7 +112,7 @@ TEST(Environment, IsAskedAfterEveryStepAndProductionsReadTheAnswers) {
     RecordingEnvironment env;
     DerivationOptions o;
     o.environment = &env;
-    EXPECT_EQ(derive(ls, 4, o).toString(ls.lsystem.symbols), "FFB?E(400)");
+    EXPECT_EQ(deriveWithQueries(ls, 4, o).toString(ls.lsystem.symbols), "FFB?E(400)");
     ASSERT_EQ(env.seen.size(), 5u) << "once for the axiom and once per step";
     for (int s = 0; s <= 4; ++s) EXPECT_EQ(env.seen[s].step, s);
     EXPECT_EQ(env.seen[3].params, std::vector<double>{200}) << "its own answer of step 2";
@@ -125,7 +125,7 @@ TEST(Environment, OptionsEnvironmentReplacesTheFilesOne) {
     RecordingEnvironment env;
     DerivationOptions o;
     o.environment = &env;
-    EXPECT_EQ(derive(ls, 3, o).toString(ls.lsystem.symbols), "?E(300)");
+    EXPECT_EQ(deriveWithQueries(ls, 3, o).toString(ls.lsystem.symbols), "?E(300)");
 }
 
 TEST(Environment, NoEnvironmentLinesMeansNoEnvironment) {
@@ -158,10 +158,10 @@ TEST(LectureOpenLSystem, DerivesThePrintedStringsExactly) {
         << "the plant stops; time goes on";
     // The picture is the derivation: the string draws nothing (the homomorphism erases F),
     // and the diagram's rows are the four printed strings, ?E's answer under ?E.
-    Scene scene = interpret(ls, applyHomomorphism(ls.lsystem, derive(ls)));
+    Scene scene = interpret(ls, applyHomomorphism(ls.lsystem, deriveWithQueries(ls)));
     EXPECT_TRUE(scene.segments.empty());
     std::vector<ModuleString> steps;
-    for (int k = 0; k <= 3; ++k) steps.push_back(derive(ls, k));
+    for (int k = 0; k <= 3; ++k) steps.push_back(deriveWithQueries(ls, k));
     RenderOptions o;
     DerivationDiagram d = layoutDerivationDiagram(steps, ls.lsystem.symbols, o);
     ASSERT_EQ(d.rows.size(), 4u);
@@ -249,7 +249,7 @@ TEST(ObstacleEnvironment, TheAvoidanceExampleNeverGrowsIntoAnObstacle) {
         return n;
     };
 
-    ModuleString s = derive(ls);
+    ModuleString s = deriveWithQueries(ls);
     Scene scene = interpret(ls, applyHomomorphism(ls.lsystem, s));
     for (const Segment& seg : scene.segments) {
         EXPECT_FALSE(inside(seg.a) || inside(seg.b))
@@ -260,7 +260,7 @@ TEST(ObstacleEnvironment, TheAvoidanceExampleNeverGrowsIntoAnObstacle) {
     EXPECT_GE(count(s, ls, "A("), 10u) << "others grew on around the obstacles";
 
     ls.lsystem.environment.clear();  // without its environment the same shrub grows through them
-    Scene blind = interpret(ls, applyHomomorphism(ls.lsystem, derive(ls)));
+    Scene blind = interpret(ls, applyHomomorphism(ls.lsystem, deriveWithQueries(ls)));
     std::size_t entering = 0;
     for (const Segment& seg : blind.segments) entering += inside(seg.b);
     EXPECT_GT(entering, 50u);
@@ -306,7 +306,7 @@ TEST(OccupancyEnvironment, RoundingNoiseDoesNotMoveAPointAcrossACellBoundary) {
 
 TEST(OccupancyEnvironment, CrowdedApicesStopAndThePlantDiffersFromTheOpenOne) {
     Model ls = loadExample(kExamples / "open-crowding-stops-branches.l");
-    ModuleString s = derive(ls);
+    ModuleString s = deriveWithQueries(ls);
     std::string text = s.toString(ls.lsystem.symbols);
     EXPECT_EQ(text.find("A("), std::string::npos) << "every apex has stopped by itself";
     std::size_t leaves = std::count(text.begin(), text.end(), 'V');
@@ -315,7 +315,7 @@ TEST(OccupancyEnvironment, CrowdedApicesStopAndThePlantDiffersFromTheOpenOne) {
 
     Model open = ls;
     open.lsystem.environment.clear();
-    Scene free = interpret(open, applyHomomorphism(open.lsystem, derive(open)));
+    Scene free = interpret(open, applyHomomorphism(open.lsystem, deriveWithQueries(open)));
     EXPECT_EQ(free.segments.size(), (std::size_t(1) << (ls.lsystem.derivationLength + 1)) - 1)
         << "without the environment: a full binary tree";
     EXPECT_LT(crowded.segments.size() * 20, free.segments.size());
@@ -327,8 +327,8 @@ TEST(OccupancyEnvironment, AnswersDoNotDependOnTheThreadCount) {
     one.threads = 1;
     many.threads = 7;
     for (int n : {6, 9, 12})
-        EXPECT_EQ(derive(ls, n, one).toString(ls.lsystem.symbols),
-                  derive(ls, n, many).toString(ls.lsystem.symbols));
+        EXPECT_EQ(deriveWithQueries(ls, n, one).toString(ls.lsystem.symbols),
+                  deriveWithQueries(ls, n, many).toString(ls.lsystem.symbols));
 }
 
 // --- process -------------------------------------------------------------------------
@@ -379,7 +379,7 @@ TEST(ProcessEnvironment, FromCppWithMakeExternalProcessEnvironment) {
     Model ls = parseModel("Lsystem: 1\naxiom: ?E(0) f ?E(0)\nA --> A\nendlsystem\n");
     DerivationOptions o;
     o.environment = env.get();
-    EXPECT_EQ(derive(ls, 2, o).toString(ls.lsystem.symbols), "?E(20)f?E(22)")
+    EXPECT_EQ(deriveWithQueries(ls, 2, o).toString(ls.lsystem.symbols), "?E(20)f?E(22)")
         << "the step number followed by the module index";
 }
 

@@ -40,7 +40,7 @@ TEST(Examples, EveryExampleParsesDerivesAndDraws) {
         std::vector<Diagnostic> warnings = parsed.warnings();
         EXPECT_TRUE(warnings.empty()) << warnings.front().toString();
         Model ls = std::move(parsed).orThrow();
-        ModuleString s = derive(ls);
+        ModuleString s = deriveWithQueries(ls);
         EXPECT_GT(s.size(), 0u);
         EXPECT_LT(s.size(), 20'000'000u) << "examples stay quick";
         ModuleString drawn = applyHomomorphism(ls.lsystem, s);
@@ -65,7 +65,7 @@ TEST(Examples, MatchIndependentReference) {
         for (const auto& st : ex["steps"]) {
             int n = st["n"];
             SCOPED_TRACE("n=" + std::to_string(n));
-            ModuleString s = derive(ls, n);
+            ModuleString s = deriveWithQueries(ls, n);
             EXPECT_EQ(s.size(), st["modules"].get<std::size_t>());
             if (st.contains("string")) {
                 EXPECT_EQ(s.toString(ls.lsystem.symbols), st["string"].get<std::string>());

@@ -26,7 +26,7 @@ inline Model loadExample(const std::filesystem::path& path, ParseOptions options
 }
 
 inline std::string derived(const LSystem& ls, int steps) {
-    return derive(ls, steps).toString(ls.symbols);
+    return deriveWithQueries(ls, steps).toString(ls.symbols);
 }
 
 inline std::string derived(const std::string& text, int steps) {

@@ -9,26 +9,22 @@
 #include <sstream>
 #include <tuple>
 
-#include "geometry/mesh_math.hpp"
 #include "graftal/graftal.hpp"
 #include "graftal/mesh.hpp"
 #include "graftal/surface.hpp"
+#include "graftal/vec3.hpp"
 
 namespace {
 
 using namespace graftal;
 
 // The mesher's own vector arithmetic (a private header): these tests are about the mesh.
-using meshing::cross;
-using meshing::dot;
-using meshing::length;
-using meshing::Vector3;
 
-Vector3 d(const Vec3f& v) {
+Vec3 d(const Vec3f& v) {
     return {v.x, v.y, v.z};
 }
-Vector3 d(const Vec3& v) {
-    return Vector3(v);
+Vec3 d(const Vec3& v) {
+    return Vec3(v);
 }
 
 Segment segment(Vec3 a, Vec3 b, float width, std::uint32_t previous = kNoSegment,
@@ -93,10 +89,10 @@ double volume(const Mesh& m) {
 ::testing::AssertionResult facesAgreeWithNormals(const Mesh& m) {
     for (std::size_t t = 0; t < m.triangleCount(); ++t) {
         const std::uint32_t* i = &m.indices[3 * t];
-        const Vector3 face = cross((d(m.positions[i[1]]) - d(m.positions[i[0]])),
-                                   (d(m.positions[i[2]]) - d(m.positions[i[0]])));
+        const Vec3 face = cross((d(m.positions[i[1]]) - d(m.positions[i[0]])),
+                                (d(m.positions[i[2]]) - d(m.positions[i[0]])));
         if (length(face) < 1e-12) continue;
-        Vector3 n;
+        Vec3 n;
         for (int k = 0; k < 3; ++k) {
             n = n + d(m.normals[i[k]]);
         }
@@ -118,13 +114,13 @@ double volume(const Mesh& m) {
     return ::testing::AssertionSuccess();
 }
 
-double distanceToLine(const Vector3& p, const Vector3& a, const Vector3& b) {
-    const Vector3 ab = b - a;
+double distanceToLine(const Vec3& p, const Vec3& a, const Vec3& b) {
+    const Vec3 ab = b - a;
     return length(cross((p - a), ab)) / length(ab);
 }
 
 // The distances of all vertices from the axis through a and b, rounded to 1e-5.
-std::multiset<double> radii(const Mesh& m, const Vector3& a, const Vector3& b) {
+std::multiset<double> radii(const Mesh& m, const Vec3& a, const Vec3& b) {
     std::multiset<double> r;
     for (const Vec3f& p : m.positions) r.insert(std::round(distanceToLine(d(p), a, b) * 1e5) / 1e5);
     return r;
@@ -159,7 +155,7 @@ TEST(TubeMesh, SingleSegmentIsAClosedTube) {
     EXPECT_NEAR(b.max.z, 0.25, 1e-6);
     // Side normals point away from the axis.
     for (std::size_t v = 0; v < m.positions.size(); ++v) {
-        const Vector3 p = d(m.positions[v]);
+        const Vec3 p = d(m.positions[v]);
         if (distanceToLine(p, {0, 0, 0}, {0, 2, 0}) < 0.1) continue;
         EXPECT_GT(dot(d(m.normals[v]), {p.x, 0, p.z}), 0) << v;
     }
@@ -201,16 +197,16 @@ TEST(TubeMesh, ConsecutiveSegmentsShareTheirJointRing) {
 // A curve bending 30 degrees at every joint, each time about a different axis.
 Scene bentAxis(int count, double width) {
     std::vector<Segment> s;
-    Vector3 p{0, 0, 0}, h{0, 1, 0};
+    Vec3 p{0, 0, 0}, h{0, 1, 0};
     for (int i = 0; i < count; ++i) {
-        const Vector3 q = p + h;
-        s.push_back(segment(p.toVec3(), q.toVec3(), static_cast<float>(width),
+        const Vec3 q = p + h;
+        s.push_back(segment(p, q, static_cast<float>(width),
                             i == 0 ? kNoSegment : static_cast<std::uint32_t>(i - 1), 0,
                             {0.3, 0.1, 1}));
         p = q;
         // Rotate h by 30 degrees about an axis perpendicular to it that turns with i.
-        const Vector3 axis = i % 2 ? Vector3{0, 0, 1} : Vector3{1, 0, 0};
-        const Vector3 k = meshing::normalizedOr(cross(h, axis), {});
+        const Vec3 axis = i % 2 ? Vec3{0, 0, 1} : Vec3{1, 0, 0};
+        const Vec3 k = normalizedOr(cross(h, axis), {});
         const double c = std::cos(std::numbers::pi / 6), sn = std::sin(std::numbers::pi / 6);
         h = c * h + sn * cross(k, h);
     }
@@ -295,7 +291,7 @@ TEST(TubeMesh, WidthTapersAlongTheAxis) {
     EXPECT_TRUE(facesAgreeWithNormals(m));
     // Normals on the narrowing part lean towards the thin end.
     for (std::size_t v = 0; v < m.positions.size(); ++v) {
-        const Vector3 p = d(m.positions[v]);
+        const Vec3 p = d(m.positions[v]);
         if (std::abs(p.y - 2) < 1e-6 && distanceToLine(p, {0, 0, 0}, {0, 1, 0}) > 0.2) {
             EXPECT_GT(m.normals[v].y, 0.1) << v;
         }
@@ -421,7 +417,7 @@ Surface squareSurface() {
     return s;
 }
 
-bool hasVertexAt(const Mesh& m, const Vector3& p) {
+bool hasVertexAt(const Mesh& m, const Vec3& p) {
     for (const Vec3f& v : m.positions)
         if (length((d(v) - p)) < 1e-5) return true;
     return false;

@@ -47,7 +47,7 @@ TEST(QueryModules, CommunicationModulesTalkToTheEnvironment) {
     RecordingEnvironment env;
     DerivationOptions o;
     o.environment = &env;
-    ModuleString s = derive(ls, 2, o);
+    ModuleString s = deriveWithQueries(ls, 2, o);
     EXPECT_EQ(s.toString(ls.symbols), "FFA?E(202)");
     ASSERT_EQ(env.seen.size(), 3u) << "once for the axiom and once per step";
     EXPECT_EQ(env.seen[0], (std::pair<int, double>{0, 0}));

@@ -3,6 +3,8 @@
 
 #include <cairo.h>
 
+#include "graftal/streamed_interpretation.hpp"
+#include "graftal/streamed_picture.hpp"
 #include "graftal/streaming.hpp"
 #include "process.hpp"
 #include "test_helpers.hpp"

@@ -8,9 +8,9 @@
 #include <random>
 #include <vector>
 
-#include "geometry/mesh_math.hpp"
 #include "graftal/graftal.hpp"
 #include "graftal/mesh.hpp"
+#include "graftal/vec3.hpp"
 
 namespace {
 
@@ -22,22 +22,18 @@ struct P2 {
 };
 
 // The mesher's own vector arithmetic (a private header): these tests are about triangles.
-using graftal::meshing::cross;
-using graftal::meshing::dot;
-using graftal::meshing::length;
-using graftal::meshing::Vector3;
 
 // Twice the vector area of the triangle a, b, c.
-Vector3 doubleArea(const Vec3& a, const Vec3& b, const Vec3& c) {
-    return cross(Vector3(b) - Vector3(a), Vector3(c) - Vector3(a));
+Vec3 doubleArea(const Vec3& a, const Vec3& b, const Vec3& c) {
+    return cross(Vec3(b) - Vec3(a), Vec3(c) - Vec3(a));
 }
 
 // Twice the vector area of an outline: its length is twice the area of a planar outline,
 // its direction the normal the outline winds counter-clockwise around.
-Vector3 newell(const std::vector<Vec3>& v) {
-    Vector3 n;
+Vec3 newell(const std::vector<Vec3>& v) {
+    Vec3 n;
     for (std::size_t i = 0; i < v.size(); ++i)
-        n = n + cross(Vector3(v[i]), Vector3(v[(i + 1) % v.size()]));
+        n = n + cross(Vec3(v[i]), Vec3(v[(i + 1) % v.size()]));
     return n;
 }
 
@@ -75,9 +71,9 @@ std::vector<std::uint32_t> checkTriangulation(const std::vector<P2>& outline, bo
     const std::vector<Vec3> v = placed(outline, rotate);
     const std::vector<std::uint32_t> t = triangulatePolygon(v);
     EXPECT_EQ(t.size(), 3 * (outline.size() - 2));
-    const Vector3 n = newell(v);
+    const Vec3 n = newell(v);
     const double polygonArea = length(n) / 2;
-    const Vector3 unit = (1 / length(n)) * n;
+    const Vec3 unit = (1 / length(n)) * n;
     double sum = 0;
     for (std::size_t k = 0; k + 2 < t.size(); k += 3) {
         for (int i = 0; i < 3; ++i) EXPECT_LT(t[k + i], v.size());

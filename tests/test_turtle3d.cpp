@@ -20,7 +20,7 @@ struct Frame {
 Frame frameAfter(const std::string& modules, double angle = 90) {
     Model ls = parseModel("Lsystem: 1\nangle increment: " + std::to_string(angle) +
                           "\naxiom: " + modules + "?H(0,0,0)?L(0,0,0)?U(0,0,0)\nendlsystem\n");
-    ModuleString s = derive(ls, 0);
+    ModuleString s = deriveWithQueries(ls, 0);
     auto v = [&](std::size_t i) {
         auto p = s.params(i);
         return Vec3{p[0], p[1], p[2]};
@@ -94,7 +94,7 @@ TEST(Turtle3D, FrameStaysOrthonormalAfterAMillionRotations) {
     for (int i = 0; i < 350000; ++i) axiom += "+&/";  // 1.05 million rotations
     Model big = parseModel("Lsystem: 1\nangle increment: 13.7\naxiom: " + axiom +
                            "?H(0,0,0)?L(0,0,0)?U(0,0,0)\nendlsystem\n");
-    ModuleString s = derive(big, 0);
+    ModuleString s = deriveWithQueries(big, 0);
     std::size_t n = s.size();
     auto v = [&](std::size_t i) {
         auto p = s.params(i);
@@ -114,7 +114,7 @@ TEST(Turtle3D, TropismBendsTowardTheVectorByElasticityTimesSine) {
     Model ls = parseModel(
         "Lsystem: 1\ntropism direction: 1,0,0\ntropism elasticity: 0.2\n"
         "axiom: F?H(0,0,0)\nendlsystem\n");
-    ModuleString s = derive(ls, 0);
+    ModuleString s = deriveWithQueries(ls, 0);
     auto h = s.params(1);
     EXPECT_NEAR(h[0], std::sin(0.2), 1e-12);
     EXPECT_NEAR(h[1], std::cos(0.2), 1e-12);
@@ -124,14 +124,14 @@ TEST(Turtle3D, NegativeElasticityBendsAway) {
     Model ls = parseModel(
         "Lsystem: 1\ntropism direction: 1,0,0\ntropism elasticity: -0.2\n"
         "axiom: F?H(0,0,0)\nendlsystem\n");
-    EXPECT_NEAR(derive(ls, 0).params(1)[0], -std::sin(0.2), 1e-12);
+    EXPECT_NEAR(deriveWithQueries(ls, 0).params(1)[0], -std::sin(0.2), 1e-12);
 }
 
 TEST(Turtle3D, TropismVanishesAlongTheVector) {
     Model ls = parseModel(
         "Lsystem: 1\ntropism direction: 0,1,0\ntropism elasticity: 0.5\n"
         "axiom: FFF?H(0,0,0)\nendlsystem\n");
-    ModuleString s = derive(ls, 0);
+    ModuleString s = deriveWithQueries(ls, 0);
     auto h = s.params(3);
     EXPECT_NEAR(h[0], 0, 1e-15);
     EXPECT_NEAR(h[1], 1, 1e-15);
@@ -139,7 +139,7 @@ TEST(Turtle3D, TropismVanishesAlongTheVector) {
 
 TEST(Turtle3D, ConsecutiveSegmentsOfAnAxisAreLinked) {
     Model ls = parseModel("Lsystem: 1\naxiom: FF[+F]F f F\nendlsystem\n");
-    Scene s = interpret(ls, derive(ls, 0));
+    Scene s = interpret(ls, deriveWithQueries(ls, 0));
     ASSERT_EQ(s.segments.size(), 5u);
     EXPECT_EQ(s.segments[0].previous, kNoSegment);
     EXPECT_EQ(s.segments[1].previous, 0u);
@@ -151,7 +151,7 @@ TEST(Turtle3D, ConsecutiveSegmentsOfAnAxisAreLinked) {
 TEST(Turtle3D, WidthAttributes) {
     Model ls = parseModel(
         "Lsystem: 1\nline width: 2\nwidth factor: 0.5\naxiom: F!F#F!(0.3)F\nendlsystem\n");
-    Scene s = interpret(ls, derive(ls, 0));
+    Scene s = interpret(ls, deriveWithQueries(ls, 0));
     ASSERT_EQ(s.segments.size(), 4u);
     EXPECT_FLOAT_EQ(s.segments[0].width, 2);
     EXPECT_FLOAT_EQ(s.segments[1].width, 1);
@@ -161,7 +161,7 @@ TEST(Turtle3D, WidthAttributes) {
 
 TEST(Turtle3D, PolygonVerticesAndGMoves) {
     Model ls = parseModel("Lsystem: 1\naxiom: {.G+fG+f.}F g F\nendlsystem\n");
-    Scene s = interpret(ls, derive(ls, 0));
+    Scene s = interpret(ls, deriveWithQueries(ls, 0));
     ASSERT_EQ(s.polygonCount(), 1u);
     EXPECT_EQ(s.polygon(0).size(), 5u) << "start, '.', f, f, '.' (G adds no vertex)";
     EXPECT_EQ(s.segments.size(), 2u) << "G draws nothing inside a polygon; F, g, F outside";
@@ -169,7 +169,7 @@ TEST(Turtle3D, PolygonVerticesAndGMoves) {
 
 TEST(Turtle3D, SurfacesArePlacedAtTheTurtleFrame) {
     Model ls = parseModel("Lsystem: 1\naxiom: F~leaf&F~leaf(2)~petal\nendlsystem\n");
-    Scene s = interpret(ls, derive(ls, 0));
+    Scene s = interpret(ls, deriveWithQueries(ls, 0));
     ASSERT_EQ(s.surfaces.size(), 3u);
     ASSERT_EQ(s.surfaceNames.size(), 2u);
     EXPECT_EQ(s.surfaceNames[s.surfaces[0].surface], "leaf");
@@ -182,11 +182,11 @@ TEST(Turtle3D, SurfacesArePlacedAtTheTurtleFrame) {
 
 TEST(Turtle3D, FlatStringsStayTwoDimensional) {
     Model ls = parseModel("Lsystem: 1\naxiom: F+F[-F]\nendlsystem\n");
-    EXPECT_FALSE(interpret(ls, derive(ls, 0)).is3D);
+    EXPECT_FALSE(interpret(ls, deriveWithQueries(ls, 0)).is3D);
     Model rolled = parseModel("Lsystem: 1\naxiom: F/(180)F[+F]/(180)F[+F]\nendlsystem\n");
-    EXPECT_FALSE(interpret(rolled, derive(rolled, 0)).is3D) << "a half roll keeps a plant flat";
+    EXPECT_FALSE(interpret(rolled, deriveWithQueries(rolled, 0)).is3D) << "a half roll keeps a plant flat";
     Model pitched = parseModel("Lsystem: 1\naxiom: F&F\nendlsystem\n");
-    EXPECT_TRUE(interpret(pitched, derive(pitched, 0)).is3D);
+    EXPECT_TRUE(interpret(pitched, deriveWithQueries(pitched, 0)).is3D);
 }
 
 TEST(ViewSettings, BadValuesAreRejectedWithTheirPlace) {

@@ -6,12 +6,24 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <vector>
 
+#include "graftal/environment.hpp"
 #include "graftal/lsystem.hpp"
 #include "graftal/model.hpp"
 #include "graftal/module_string.hpp"
+#include "graftal/vec3.hpp"
 
 namespace graftal {
+
+// Walks the turtle over `modules` (the string after the homomorphism) and calls
+// visit(i, frame) for every module whose symbol is flagged in `wanted` (indexed by symbol
+// id): how a derivation learns where its query modules ?P ?H ?L ?U and ?E are. The turtle
+// layer supplies one (turtleQueryResolver() in turtle.hpp); the derivation does not know
+// the turtle.
+using QueryResolver = std::function<void(
+    const LSystem& lsystem, const ModuleString& modules, const std::vector<bool>& wanted,
+    const std::function<void(std::size_t, const TurtleFrame&)>& visit)>;
 
 struct DerivationOptions {
     // Bytes the module strings may take; a step that would need more is refused before
@@ -21,11 +33,10 @@ struct DerivationOptions {
     unsigned threads = 0;               // 0: one per core. The output never depends on it.
     // Answers ?E modules. nullptr: the one the file's `environment:` lines describe (if any).
     Environment* environment = nullptr;
-    // How query modules (?P, ?H, ...) place the turtle. nullptr: the default view; the
-    // Model overloads below pass the model's own.
-    const ViewSettings* view = nullptr;
     // Called after every step with the step number and the string's size (for progress).
     std::function<void(int step, std::size_t modules)> progress;
+    // Fills query modules after every step. Empty: a string with query modules is an error.
+    QueryResolver queryResolver;
 };
 
 class Derivation {
@@ -33,7 +44,8 @@ class Derivation {
     // The derivation keeps its own copy of the L-system: `Derivation d(parseLSystem(text))`
     // is safe, and so is changing the original afterwards.
     explicit Derivation(LSystem lsystem, DerivationOptions options = {});
-    // The view is copied too, for the query modules (?P, ?H, ...).
+    // The grammar of a model (query modules are placed by options.queryResolver, which
+    // knows the view: turtleQueryResolver(model.view)).
     Derivation(const Model& model, DerivationOptions options = {});
     ~Derivation();
     Derivation(const Derivation&) = delete;
@@ -54,7 +66,6 @@ class Derivation {
     void answerQueries(int stepNumber);
 
     LSystem lsystem_;
-    std::optional<ViewSettings> view_;  // the Model's view, when made from one
     DerivationOptions options_;
     std::unique_ptr<ModuleString> current_, next_;
     std::unique_ptr<class RewritingEngine> rules_, decomposition_;

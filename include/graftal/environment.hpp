@@ -8,17 +8,12 @@
 #include <vector>
 
 #include "graftal/diagnostics.hpp"
-#include "graftal/scene.hpp"
+#include "graftal/environment_line.hpp"
+#include "graftal/vec3.hpp"
 
 namespace graftal {
 
 class LSystem;
-
-// Where the turtle is when it reaches a module, and which way it faces (H x L = U).
-struct TurtleFrame {
-    Vec3 position;
-    Vec3 heading{0, 1, 0}, left{-1, 0, 0}, up{0, 0, 1};
-};
 
 // One ?E module: the environment reads its frame and parameters and writes its answer
 // into the parameters.
@@ -35,12 +30,6 @@ class Environment {
     virtual ~Environment() = default;
     virtual std::string name() const = 0;
     virtual void respond(int step, std::span<CommunicationRequest> requests) = 0;
-};
-
-// `environment:` lines of an L-system file, kept raw for the environment to read.
-struct EnvironmentLine {
-    std::string text;  // everything after "environment:"
-    SourceLocation location;
 };
 
 // Builds the environment an L-system's `environment:` lines ask for; nullptr when there

@@ -13,9 +13,11 @@
 #include <vector>
 
 #include "graftal/diagnostics.hpp"
-#include "graftal/environment.hpp"
+#include "graftal/environment_line.hpp"
 #include "graftal/expression.hpp"
 #include "graftal/module_string.hpp"
+#include "graftal/rgb.hpp"
+#include "graftal/vec3.hpp"
 
 namespace graftal {
 

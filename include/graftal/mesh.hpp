@@ -19,6 +19,14 @@ struct Vec3f {
     friend bool operator==(const Vec3f&, const Vec3f&) = default;
 };
 
+// The single-precision copy a mesh stores (and Embree reads) of a computed point.
+inline Vec3f toVec3f(const Vec3& v) {
+    return {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)};
+}
+inline Vec3 toVec3(const Vec3f& v) {
+    return {v.x, v.y, v.z};
+}
+
 // Indexed triangles with per-vertex normals; every triangle has a colour index into
 // `palette` (writers group triangles by colour into materials).
 struct Mesh {

@@ -134,6 +134,11 @@ std::vector<std::uint64_t> countSymbols(const ModuleString& s, std::size_t symbo
 
 // Shortest decimal text that reads back as the same double; integers without a point.
 std::string formatNumber(double v);
+
+// Appends one module as a string prints it: its name, then "(a,b,...)" when it has
+// parameters.
+void appendModuleText(std::string& out, const SymbolTable& table, Symbol symbol,
+                      std::span<const double> params);
 // "190.7 MiB": binary units, as --memory-limit reads them (2G is 2 GiB).
 std::string formatBytes(double bytes);
 

@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "graftal/atomic_file.hpp"
+#include "graftal/file_format.hpp"
 #include "graftal/scene.hpp"
 
 namespace graftal {
@@ -81,19 +83,11 @@ void writeObj(const Mesh& mesh, const std::filesystem::path& path);  // + .mtl b
 void writePly(const Mesh& mesh, const std::filesystem::path& path);  // binary, vertex colours
 void writeGlb(const Mesh& mesh, const std::filesystem::path& path);  // glTF 2.0 binary
 
-enum class ImageFormat { Svg, Png, Pdf };
-// From the file name's extension (case-insensitive); nullopt for an unknown one.
+// The picture formats of the format table (file_format.hpp).
+using ImageFormat = FileFormat;
+// From the file name's extension (case-insensitive); nullopt for an unknown one and for a
+// format that is not a picture.
 std::optional<ImageFormat> imageFormatFor(const std::filesystem::path& path);
-
-// ".<name>.tmp-<pid>-<n>" beside `target`: hidden, recognisably graftal's, unique per
-// process and call. Every file writer writes there first and renames over the target.
-std::filesystem::path temporaryPathBeside(const std::filesystem::path& target);
-
-// Calls write(temporary) for a temporary file beside `path` and renames it into place
-// when write returns; on any failure the temporary is removed and nothing is left at
-// `path`. Errors name `path`, never the temporary. Every file writer goes through this.
-void writeFileAtomically(const std::filesystem::path& path,
-                         const std::function<void(const std::filesystem::path&)>& write);
 
 // Writes by extension, atomically: the picture goes to a temporary file beside `path`
 // that is renamed into place only when complete, so a failure never leaves a partial

@@ -1,7 +1,6 @@
 // Plain geometry produced by the turtle: what every writer consumes.
 #pragma once
 
-#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <ostream>
@@ -9,50 +8,10 @@
 #include <string>
 #include <vector>
 
+#include "graftal/rgb.hpp"
+#include "graftal/vec3.hpp"
+
 namespace graftal {
-
-struct Vec3 {
-    double x = 0, y = 0, z = 0;
-
-    friend bool operator==(const Vec3&, const Vec3&) = default;
-};
-
-std::ostream& operator<<(std::ostream& os, const Vec3& v);
-
-inline Vec3 operator+(const Vec3& a, const Vec3& b) {
-    return {a.x + b.x, a.y + b.y, a.z + b.z};
-}
-inline Vec3 operator-(const Vec3& a, const Vec3& b) {
-    return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-inline Vec3 operator*(const Vec3& a, double k) {
-    return {a.x * k, a.y * k, a.z * k};
-}
-inline Vec3 operator*(double k, const Vec3& a) {
-    return a * k;
-}
-inline double dot(const Vec3& a, const Vec3& b) {
-    return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-inline Vec3 cross(const Vec3& a, const Vec3& b) {
-    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-inline double length(const Vec3& a) {
-    return std::sqrt(dot(a, a));
-}
-// The unit vector along `a`; a zero vector stays zero.
-inline Vec3 normalized(const Vec3& a) {
-    double n = length(a);
-    return n > 0 ? a * (1 / n) : a;
-}
-
-struct Rgb {
-    float r = 0, g = 0, b = 0;  // each in [0, 1]
-
-    friend bool operator==(const Rgb&, const Rgb&) = default;
-};
-
-std::ostream& operator<<(std::ostream& os, const Rgb& c);  // #rrggbb
 
 struct Bounds {
     Vec3 min{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),

@@ -4,10 +4,12 @@
 #include <functional>
 #include <vector>
 
+#include "graftal/derivation.hpp"
 #include "graftal/environment.hpp"
 #include "graftal/model.hpp"
 #include "graftal/module_string.hpp"
 #include "graftal/scene.hpp"
+#include "graftal/vec3.hpp"
 
 namespace graftal {
 
@@ -24,5 +26,14 @@ void traceTurtle(const Model& model, const ModuleString& modules, const std::vec
 void traceTurtle(const LSystem& lsystem, const ViewSettings& view, const ModuleString& modules,
                  const std::vector<bool>& wanted,
                  const std::function<void(std::size_t, const TurtleFrame&)>& visit);
+
+// traceTurtle as a derivation's QueryResolver: the turtle, set up by `view` (a copy is
+// kept), answers query modules.
+QueryResolver turtleQueryResolver(ViewSettings view = {});
+
+// derive() with the turtle answering query modules (unless `options` brings a resolver).
+ModuleString deriveWithQueries(const LSystem& lsystem, int steps = -1,
+                               DerivationOptions options = {});
+ModuleString deriveWithQueries(const Model& model, int steps = -1, DerivationOptions options = {});
 
 }  // namespace graftal

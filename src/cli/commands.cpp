@@ -15,6 +15,7 @@
 #include "graftal/growth.hpp"
 #include "graftal/lsystem.hpp"
 #include "graftal/model.hpp"
+#include "graftal/streamed_interpretation.hpp"
 #include "graftal/streaming.hpp"
 #include "graftal/turtle.hpp"
 
@@ -63,11 +64,12 @@ Loaded loadInput(const InputOptions& in) {
     return l;
 }
 
-DerivationOptions derivationOptions(const InputOptions& in) {
+DerivationOptions derivationOptions(const InputOptions& in, const Model& model) {
     DerivationOptions opts;
     opts.memoryLimit = in.memoryLimit;
     opts.seed = in.seed;
     opts.threads = in.threads;
+    opts.queryResolver = turtleQueryResolver(model.view);
     // Progress for long derivations, only where a person watches (a terminal), and only
     // once a derivation has taken more than a second.
     if (!in.quiet && ::isatty(2)) {
@@ -132,7 +134,7 @@ bool chooseStreaming(const Loaded& l, const InputOptions& in, bool canStream, bo
 
 Derived deriveLoaded(Loaded loaded, const InputOptions& in) {
     Derived d{std::move(loaded.model), {}, loaded.steps};
-    d.modules = derive(d.model, d.steps, derivationOptions(in));
+    d.modules = derive(d.model, d.steps, derivationOptions(in, d.model));
     endProgressLine();
     return d;
 }
@@ -219,15 +221,7 @@ class PrintingSink : public ModuleSink {
     explicit PrintingSink(const SymbolTable& t) : table_(t) { buffer_.reserve(1 << 16); }
     ~PrintingSink() override { flush(); }
     void module(Symbol s, std::span<const double> params) override {
-        buffer_ += table_.name(s);
-        if (!params.empty()) {
-            buffer_ += '(';
-            for (std::size_t k = 0; k < params.size(); ++k) {
-                if (k) buffer_ += ',';
-                buffer_ += formatNumber(params[k]);
-            }
-            buffer_ += ')';
-        }
+        appendModuleText(buffer_, table_, s, params);
         if (buffer_.size() > (1 << 16) - 512) flush();
     }
     void flush() {
@@ -247,7 +241,7 @@ int runDerive(const InputOptions& in, bool homomorphism) {
     if (chooseStreaming(l, in, !homomorphism)) {
         {
             PrintingSink out(l.model.lsystem.symbols);
-            streamDerivation(l.model.lsystem, l.steps, out, derivationOptions(in));
+            streamDerivation(l.model.lsystem, l.steps, out, derivationOptions(in, l.model));
         }
         std::cout << '\n';
         std::cout.flush();
@@ -255,7 +249,7 @@ int runDerive(const InputOptions& in, bool homomorphism) {
     }
     Derived d = deriveLoaded(std::move(l), in);
     if (homomorphism)
-        d.modules = applyHomomorphism(d.model.lsystem, d.modules, derivationOptions(in));
+        d.modules = applyHomomorphism(d.model.lsystem, d.modules, derivationOptions(in, d.model));
     d.modules.print(std::cout, d.model.lsystem.symbols);
     std::cout << '\n';
     std::cout.flush();
@@ -320,7 +314,7 @@ int runStats(const InputOptions& in, bool geometry, bool predict) {
     j["file"] = in.file;
     j["steps"] = l.steps;
     if (chooseStreaming(l, in, true)) {
-        StreamedMeasure m = measureStreamed(l.model, l.steps, derivationOptions(in), geometry);
+        StreamedMeasure m = measureStreamed(l.model, l.steps, derivationOptions(in, l.model), geometry);
         j["modules"] = m.modules;
         j["symbols"] = symbolsJson(l.model.lsystem.symbols, m.symbolCounts);
         if (geometry) {
@@ -333,7 +327,7 @@ int runStats(const InputOptions& in, bool geometry, bool predict) {
         std::cout << j.dump(2) << '\n';
         return 0;
     }
-    ModuleString modules = derive(l.model, l.steps, derivationOptions(in));
+    ModuleString modules = derive(l.model, l.steps, derivationOptions(in, l.model));
     endProgressLine();
     // Counts and bounds only: the turtle walks without storing any geometry. Without a
     // homomorphism that walk also counts the symbols, so the string is read once.
@@ -342,7 +336,7 @@ int runStats(const InputOptions& in, bool geometry, bool predict) {
         m = measureModules(
             l.model, l.model.lsystem.homomorphism.empty()
                          ? modules
-                         : applyHomomorphism(l.model.lsystem, modules, derivationOptions(in)));
+                         : applyHomomorphism(l.model.lsystem, modules, derivationOptions(in, l.model)));
     std::vector<std::uint64_t> counts;
     if (m && l.model.lsystem.homomorphism.empty()) {
         counts = m->symbolCounts;

@@ -59,7 +59,8 @@ struct Derived {
     int steps = 0;
 };
 Derived deriveLoaded(Loaded loaded, const InputOptions& in);
-DerivationOptions derivationOptions(const InputOptions& in);
+// The model's view places the turtle that answers query modules.
+DerivationOptions derivationOptions(const InputOptions& in, const Model& model);
 // Whether to stream: when --stream asks (an error if the L-system cannot be streamed), or
 // when the predicted string would not fit the memory limit and `canStream` (then a note
 // says so). When it would not fit and cannot stream, refuses before allocating. A streamed

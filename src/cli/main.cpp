@@ -4,6 +4,7 @@
 
 #include "commands.hpp"
 #include "graftal/diagnostics.hpp"
+#include "graftal/file_format.hpp"
 
 namespace {
 
@@ -61,9 +62,14 @@ int main(int argc, char** argv) {
                     "module counts per step from the productions, without deriving");
 
     auto* render = app.add_subcommand(
-        "render", "draw the L-system: pictures (.svg .png .pdf) or 3D files (.obj .ply .glb)");
+        "render", "draw the L-system: pictures (" +
+                      graftal::extensionList(graftal::FormatKind::Picture, " ", " ") +
+                      ") or 3D files (" +
+                      graftal::extensionList(graftal::FormatKind::Mesh, " ", " ") + ")");
     addInputOptions(*render, in, memoryLimit);
-    render->add_option("-o,--output", out.output, "output file: .svg .png .pdf .obj .ply .glb")
+    render
+        ->add_option("-o,--output", out.output,
+                     "output file: " + graftal::extensionList(std::nullopt, " ", " "))
         ->required();
     render->add_option("--size", size, "picture size WxH in pixels (default 800x800)");
     render->add_option("--line-width", out.render.lineWidth, "line width in pixels (0: automatic)")

@@ -2,7 +2,6 @@
 // 2D scenes become line art; 3D scenes become ray-traced PNGs and meshes, or line art
 // seen from a --view.
 #include <algorithm>
-#include <cctype>
 #include <filesystem>
 
 #include "commands.hpp"
@@ -10,29 +9,17 @@
 #include "graftal/color_map.hpp"
 #include "graftal/derivation.hpp"
 #include "graftal/derivation_diagram.hpp"
+#include "graftal/file_format.hpp"
 #include "graftal/mesh.hpp"
 #include "graftal/projection.hpp"
 #include "graftal/render3d.hpp"
-#include "graftal/streaming.hpp"
+#include "graftal/streamed_picture.hpp"
 #include "graftal/surface.hpp"
 #include "graftal/turtle.hpp"
 
 namespace graftal::cli {
 
 namespace {
-
-enum class OutputKind { Picture, Obj, Ply, Glb };
-
-std::optional<OutputKind> outputKindFor(const std::filesystem::path& p) {
-    std::string ext = p.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    if (ext == ".obj") return OutputKind::Obj;
-    if (ext == ".ply") return OutputKind::Ply;
-    if (ext == ".glb") return OutputKind::Glb;
-    if (imageFormatFor(p)) return OutputKind::Picture;
-    return std::nullopt;
-}
 
 // Surfaces a file declares (`surface: l leaf.s 0.5`) are read relative to the file; a
 // name without a file on disk falls back to the built-in surfaces (leaf, petal).
@@ -82,7 +69,7 @@ void renderDerivation(const Model& model, int steps, const InputOptions& in,
                       const RenderCommandOptions& out) {
     const LSystem& ls = model.lsystem;
     std::vector<ModuleString> strings;
-    Derivation derivation(model, derivationOptions(in));
+    Derivation derivation(model, derivationOptions(in, model));
     strings.push_back(derivation.current());
     for (int k = 0; k < steps; ++k) {
         derivation.step();
@@ -97,26 +84,26 @@ void renderDerivation(const Model& model, int steps, const InputOptions& in,
 }  // namespace
 
 int runRender(const InputOptions& in, const RenderCommandOptions& out) {
-    auto kind = outputKindFor(out.output);
-    if (!kind)
-        throw Error(
-            SourceLocation{"graftal", 0, 0},
-            "-o " + out.output + ": unknown format (use .svg, .png, .pdf, .obj, .ply or .glb)");
+    const std::optional<FileFormat> format = fileFormatFor(out.output);
+    if (!format)
+        throw Error(SourceLocation{"graftal", 0, 0},
+                    "-o " + out.output + ": unknown format (use " + extensionList() + ")");
+    const bool picture = fileFormatInfo(*format).kind == FormatKind::Picture;
     std::optional<ViewDirection> view;
     if (!out.view.empty()) {
         view = viewDirectionFromName(out.view);
         if (!view)
             throw Error(SourceLocation{"graftal", 0, 0},
                         "--view '" + out.view + "': expected front, back, side or top");
-        if (*kind != OutputKind::Picture)
+        if (!picture)
             throw Error(SourceLocation{"graftal", 0, 0},
-                        "--view draws 2D line art; it applies "
-                        "to .svg, .png and .pdf, not 3D files");
+                        "--view draws 2D line art; it applies to " +
+                            extensionList(FormatKind::Picture, ", ", " and ") + ", not 3D files");
     }
 
     Loaded l = loadInput(in);
     if (out.derivation) {
-        if (*kind != OutputKind::Picture)
+        if (!picture)
             throw Error(SourceLocation{"graftal", 0, 0},
                         "--derivation draws a picture; use .svg, .png or .pdf");
         renderDerivation(l.model, l.steps, in, out);
@@ -125,19 +112,19 @@ int runRender(const InputOptions& in, const RenderCommandOptions& out) {
 
     {
         // A 2D PNG can be drawn while the derivation streams; everything else needs the scene.
-        bool png2D = *kind == OutputKind::Picture && imageFormatFor(out.output) == ImageFormat::Png;
+        bool png2D = *format == FileFormat::Png;
         bool pixelBound = png2D && streamedPictureIsSummarised(l.model, l.steps, in.memoryLimit);
         if (chooseStreaming(l, in, png2D, true, pixelBound)) {
             RenderOptions render = out.render;
             double fill = std::clamp(l.model.view.scaleFactor / 100.0, 0.01, 1.0);
             render.margin = 0.5 - (0.5 - render.margin) * fill;
-            renderStreamedPng(l.model, l.steps, derivationOptions(in), render, out.output);
+            renderStreamedPng(l.model, l.steps, derivationOptions(in, l.model), render, out.output);
             return 0;
         }
     }
     Derived d = deriveLoaded(std::move(l), in);
     Scene scene =
-        interpret(d.model, applyHomomorphism(d.model.lsystem, d.modules, derivationOptions(in)));
+        interpret(d.model, applyHomomorphism(d.model.lsystem, d.modules, derivationOptions(in, d.model)));
     if (int n = out.spline.value_or(d.model.view.splineSubdivisions); n > 0)
         scene = smoothSegments(scene, n);
     if (!d.model.view.colorMap.empty()) {
@@ -146,7 +133,7 @@ int runRender(const InputOptions& in, const RenderCommandOptions& out) {
         scene.palette = loadColorMap(map);
     }
 
-    if (*kind == OutputKind::Picture && scene.segments.empty() && scene.polygonCount() == 0 &&
+    if (picture && scene.segments.empty() && scene.polygonCount() == 0 &&
         scene.surfaces.empty()) {
         // No turtle meaning (Anabaena's cells, the Fibonacci words): the derivation is
         // the picture the book draws for such systems.
@@ -156,8 +143,7 @@ int runRender(const InputOptions& in, const RenderCommandOptions& out) {
     }
 
     bool threeD = scene.is3D && !view;
-    if (*kind == OutputKind::Picture &&
-        !(threeD && imageFormatFor(out.output) == ImageFormat::Png)) {
+    if (picture && !(threeD && *format == FileFormat::Png)) {
         // Line art: 2D scenes as they are, 3D scenes seen from the front unless told.
         if (scene.is3D) scene = projectScene(scene, view.value_or(ViewDirection::Front));
         RenderOptions render = out.render;
@@ -176,7 +162,7 @@ int runRender(const InputOptions& in, const RenderCommandOptions& out) {
     MeshOptions mo;
     mo.tubeSides = out.tubeSides;
     mo.cylinders = d.model.view.lineStyle == LineStyle::Cylinders;
-    if (*kind == OutputKind::Picture) {
+    if (picture) {
         // In a picture, a stem thinner than a pixel would vanish between the rays: draw it at
         // least about a pixel wide, as line art would. 3D files keep the true widths.
         Bounds b = scene.bounds();
@@ -187,17 +173,20 @@ int runRender(const InputOptions& in, const RenderCommandOptions& out) {
         }
     }
     Mesh mesh = buildMesh(scene, mo, &surfaces);
-    switch (*kind) {
-        case OutputKind::Obj:
+    switch (*format) {
+        case FileFormat::Obj:
             writeObj(mesh, out.output);
             break;
-        case OutputKind::Ply:
+        case FileFormat::Ply:
             writePly(mesh, out.output);
             break;
-        case OutputKind::Glb:
+        case FileFormat::Glb:
             writeGlb(mesh, out.output);
             break;
-        case OutputKind::Picture:
+        case FileFormat::Png:
+        case FileFormat::Svg:
+        case FileFormat::Pdf:
+            // Only a 3D scene drawn as a PNG gets here: it is ray traced.
             renderRaytraced(mesh, raytraceOptions(d.model.view, out, in.threads), out.output);
             break;
     }

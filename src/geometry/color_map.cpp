@@ -3,24 +3,19 @@
 // short file silently leaves colours undefined. Here any size but 768 bytes is an error.
 #include "graftal/color_map.hpp"
 
-#include <unistd.h>
-
 #include <algorithm>
-#include <atomic>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <fstream>
 #include <iterator>
-#include <system_error>
 
+#include "graftal/atomic_file.hpp"
 #include "graftal/diagnostics.hpp"
 
 namespace graftal {
 
 namespace {
-
-namespace fs = std::filesystem;
 
 Error mapError(const std::string& file, const std::string& message) {
     return Error(SourceLocation{file, 0, 0}, message);
@@ -88,35 +83,14 @@ std::vector<std::uint8_t> encodeColorMap(std::span<const Rgb> colors) {
 }
 
 void saveColorMap(const std::filesystem::path& path, std::span<const Rgb> colors) {
-    std::vector<std::uint8_t> bytes = encodeColorMap(colors);
-    // A hidden temporary in the same directory (rename is atomic only within one file
-    // system), unique per process and call, renamed over the target once complete.
-    static std::atomic<unsigned> counter{0};
-    std::string tmpName = ".";
-    tmpName += path.filename().string();
-    tmpName += ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
-    fs::path tmp = path.parent_path() / tmpName;
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        if (!out)
-            throw mapError(path.string(),
-                           std::string("cannot create colour map: ") + std::strerror(errno));
-        out.write(reinterpret_cast<const char*>(bytes.data()),
-                  static_cast<std::streamsize>(bytes.size()));
-        out.close();
-        if (!out) {
-            std::error_code ignored;
-            fs::remove(tmp, ignored);
-            throw mapError(path.string(), "cannot write colour map: write failed (disk full?)");
-        }
-    }
-    std::error_code ec;
-    fs::rename(tmp, path, ec);
-    if (ec) {
-        std::error_code ignored;
-        fs::remove(tmp, ignored);
-        throw mapError(path.string(), "cannot write colour map: " + ec.message());
-    }
+    const std::vector<std::uint8_t> bytes = encodeColorMap(colors);
+    writeStreamAtomically(
+        path,
+        [&](std::ostream& out) {
+            out.write(reinterpret_cast<const char*>(bytes.data()),
+                      static_cast<std::streamsize>(bytes.size()));
+        },
+        "colour map");
 }
 
 }  // namespace graftal

@@ -17,13 +17,11 @@
 
 #include "graftal/diagnostics.hpp"
 #include "graftal/surface.hpp"
-#include "mesh_math.hpp"
+#include "graftal/vec3.hpp"
 #include "polygon_triangulation.hpp"
 #include "tube_mesher.hpp"
 
 namespace graftal {
-
-using meshing::Vector3;
 
 namespace {
 
@@ -88,12 +86,12 @@ void appendPolygons(const Scene& scene, Mesh& mesh) {
         if (begin > end || end > scene.polygonVertices.size()) continue;
         const std::span<const Vec3> outline(scene.polygonVertices.data() + begin, end - begin);
         triangles.clear();
-        const Vector3 normal(triangulator.triangulate(outline, triangles));
+        const Vec3 normal(triangulator.triangulate(outline, triangles));
         if (triangles.empty()) continue;
         const auto base = static_cast<std::uint32_t>(mesh.positions.size());
         for (const Vec3& v : outline) {
-            mesh.positions.push_back(Vector3(v).toVec3f());
-            mesh.normals.push_back(normal.toVec3f());
+            mesh.positions.push_back(toVec3f(v));
+            mesh.normals.push_back(toVec3f(normal));
         }
         for (std::uint32_t i : triangles) mesh.indices.push_back(base + i);
         mesh.triangleColor.insert(mesh.triangleColor.end(), triangles.size() / 3,
@@ -111,28 +109,28 @@ class SurfacePlacement {
           origin_(instance.origin),
           scale_(instance.scale /
                  (surface.size > 0 && std::isfinite(surface.size) ? surface.size : 1)) {
-        hs_ = meshing::normalizedOr(Vector3(surface.heading), {0, 1, 0});
-        us_ = meshing::perpendicularPart(Vector3(surface.up), hs_);
-        ls_ = meshing::cross(us_, hs_);
-        h_ = meshing::normalizedOr(Vector3(instance.heading), {0, 1, 0});
-        l_ = meshing::perpendicularPart(Vector3(instance.left), h_);
-        u_ = meshing::cross(h_, l_);
+        hs_ = normalizedOr(Vec3(surface.heading), {0, 1, 0});
+        us_ = perpendicularPart(Vec3(surface.up), hs_);
+        ls_ = cross(us_, hs_);
+        h_ = normalizedOr(Vec3(instance.heading), {0, 1, 0});
+        l_ = perpendicularPart(Vec3(instance.left), h_);
+        u_ = cross(h_, l_);
         // A mirrored turtle frame mirrors the surface.
-        if (meshing::dot(u_, Vector3(instance.up)) < 0) u_ = -u_;
+        if (dot(u_, Vec3(instance.up)) < 0) u_ = -u_;
     }
 
-    bool valid() const { return meshing::isFinite(origin_) && std::isfinite(scale_); }
-    Vector3 point(const Vector3& p) const { return origin_ + scale_ * direction(p - contact_); }
-    Vector3 direction(const Vector3& v) const {
-        return meshing::dot(v, hs_) * h_ + meshing::dot(v, ls_) * l_ + meshing::dot(v, us_) * u_;
+    bool valid() const { return isFinite(origin_) && std::isfinite(scale_); }
+    Vec3 point(const Vec3& p) const { return origin_ + scale_ * direction(p - contact_); }
+    Vec3 direction(const Vec3& v) const {
+        return dot(v, hs_) * h_ + dot(v, ls_) * l_ + dot(v, us_) * u_;
     }
-    Vector3 up() const { return u_; }
+    Vec3 up() const { return u_; }
 
   private:
-    Vector3 contact_, origin_;
+    Vec3 contact_, origin_;
     double scale_;
-    Vector3 hs_, ls_, us_;  // the surface's own frame
-    Vector3 h_, l_, u_;     // the turtle's
+    Vec3 hs_, ls_, us_;  // the surface's own frame
+    Vec3 h_, l_, u_;     // the turtle's
 };
 
 class SurfaceTessellator {
@@ -151,20 +149,19 @@ class SurfaceTessellator {
                 const double s = static_cast<double>(col) / d, t = static_cast<double>(row) / d;
                 const std::size_t k = static_cast<std::size_t>(row * (d + 1) + col);
                 Vec3 n;
-                points_[k] = place.point(Vector3(evaluatePatch(patch, s, t, &n)));
-                normals_[k] = place.direction(Vector3(n));
+                points_[k] = place.point(Vec3(evaluatePatch(patch, s, t, &n)));
+                normals_[k] = place.direction(Vec3(n));
                 if (!usableNormal(normals_[k])) {
                     auto inset = [](double x) {
                         return std::clamp(x, kNormalInset, 1 - kNormalInset);
                     };
                     evaluatePatch(patch, inset(s), inset(t), &n);
-                    normals_[k] = place.direction(Vector3(n));
+                    normals_[k] = place.direction(Vec3(n));
                 }
-                normals_[k] = usableNormal(normals_[k])
-                                  ? meshing::normalizedOr(normals_[k], place.up())
-                                  : place.up();
-                mesh.positions.push_back(points_[k].toVec3f());
-                mesh.normals.push_back(normals_[k].toVec3f());
+                normals_[k] =
+                    usableNormal(normals_[k]) ? normalizedOr(normals_[k], place.up()) : place.up();
+                mesh.positions.push_back(toVec3f(points_[k]));
+                mesh.normals.push_back(toVec3f(normals_[k]));
             }
         }
         for (int row = 0; row < d; ++row) {
@@ -176,17 +173,15 @@ class SurfaceTessellator {
     }
 
   private:
-    static bool usableNormal(const Vector3& n) {
-        return meshing::isFinite(n) && meshing::length(n) > 1e-12;
-    }
+    static bool usableNormal(const Vec3& n) { return isFinite(n) && length(n) > 1e-12; }
 
     // Splits a grid cell along a diagonal, wound to face the way the patch normals do:
     // which way that is depends on the patch's parametrisation and on mirroring.
     void quad(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d,
               std::uint32_t base, std::uint16_t color, Mesh& mesh) const {
-        const Vector3 facing = meshing::cross(points_[c] - points_[a], points_[d] - points_[b]);
-        const Vector3 normal = normals_[a] + normals_[b] + normals_[c] + normals_[d];
-        if (meshing::dot(facing, normal) < 0) std::swap(b, d);
+        const Vec3 facing = cross(points_[c] - points_[a], points_[d] - points_[b]);
+        const Vec3 normal = normals_[a] + normals_[b] + normals_[c] + normals_[d];
+        if (dot(facing, normal) < 0) std::swap(b, d);
         triangle(a, b, c, base, color, mesh);
         triangle(a, c, d, base, color, mesh);
     }
@@ -203,7 +198,7 @@ class SurfaceTessellator {
     }
 
     int divisions_;
-    std::vector<Vector3> points_, normals_;
+    std::vector<Vec3> points_, normals_;
 };
 
 void appendSurfaces(const Scene& scene, const std::vector<const Surface*>& resolved, int divisions,

@@ -7,11 +7,9 @@
 #include <cmath>
 
 #include "graftal/mesh.hpp"
-#include "mesh_math.hpp"
+#include "graftal/vec3.hpp"
 
 namespace graftal {
-
-using meshing::Vector3;
 
 namespace {
 
@@ -57,16 +55,16 @@ void PolygonTriangulator::clip(std::uint32_t i, std::vector<std::uint32_t>& tria
 Vec3 PolygonTriangulator::triangulate(std::span<const Vec3> outline,
                                       std::vector<std::uint32_t>& triangles) {
     // Consecutive repeats (including the last vertex repeating the first) are one corner.
-    Vector3 low{HUGE_VAL, HUGE_VAL, HUGE_VAL}, high = -low;
+    Vec3 low{HUGE_VAL, HUGE_VAL, HUGE_VAL}, high = -low;
     for (const Vec3& v : outline) {
-        if (!meshing::isFinite(Vector3(v))) return {};
+        if (!isFinite(Vec3(v))) return {};
         low = {std::min(low.x, v.x), std::min(low.y, v.y), std::min(low.z, v.z)};
         high = {std::max(high.x, v.x), std::max(high.y, v.y), std::max(high.z, v.z)};
     }
     if (outline.size() < 3) return {};
-    const double size = meshing::length(high - low);
+    const double size = length(high - low);
     auto distinct = [&](std::uint32_t p, std::uint32_t q) {
-        return meshing::length(Vector3(outline[p]) - Vector3(outline[q])) > kSameVertex * size;
+        return length(Vec3(outline[p]) - Vec3(outline[q])) > kSameVertex * size;
     };
     kept_.clear();
     for (std::uint32_t i = 0; i < outline.size(); ++i)
@@ -77,20 +75,20 @@ Vec3 PolygonTriangulator::triangulate(std::span<const Vec3> outline,
 
     // Newell's normal is twice the vector area: its direction is the best-fit plane's
     // normal, oriented so that the outline runs counter-clockwise around it.
-    const Vector3 centre = 0.5 * (low + high);
-    Vector3 area;
+    const Vec3 centre = 0.5 * (low + high);
+    Vec3 area;
     for (std::size_t k = 0; k < m; ++k)
-        area = area + meshing::cross(Vector3(outline[kept_[k]]) - centre,
-                                     Vector3(outline[kept_[(k + 1) % m]]) - centre);
-    if (!(meshing::length(area) > kFlatTurn * size * size)) return {};
-    const Vector3 normal = meshing::normalizedOr(area, {0, 0, 1});
-    const Vector3 e1 = meshing::anyPerpendicular(normal);
-    const Vector3 e2 = meshing::cross(normal, e1);
+        area = area +
+               cross(Vec3(outline[kept_[k]]) - centre, Vec3(outline[kept_[(k + 1) % m]]) - centre);
+    if (!(length(area) > kFlatTurn * size * size)) return {};
+    const Vec3 normal = normalizedOr(area, {0, 0, 1});
+    const Vec3 e1 = anyPerpendicular(normal);
+    const Vec3 e2 = cross(normal, e1);
 
     corners_.resize(m);
     for (std::uint32_t k = 0; k < m; ++k) {
-        const Vector3 p = Vector3(outline[kept_[k]]) - centre;
-        corners_[k] = {meshing::dot(p, e1), meshing::dot(p, e2), kept_[k],
+        const Vec3 p = Vec3(outline[kept_[k]]) - centre;
+        corners_[k] = {dot(p, e1), dot(p, e2), kept_[k],
                        static_cast<std::uint32_t>((k + m - 1) % m),
                        static_cast<std::uint32_t>((k + 1) % m)};
     }
@@ -131,7 +129,7 @@ Vec3 PolygonTriangulator::triangulate(std::span<const Vec3> outline,
         tried = 0;
     }
     clip(corners_[i].next, triangles);
-    return normal.toVec3();
+    return normal;
 }
 
 std::vector<std::uint32_t> triangulatePolygon(const std::vector<Vec3>& outline) {

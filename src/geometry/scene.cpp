@@ -8,16 +8,6 @@ namespace graftal {
 
 namespace {
 
-// Adding +0.0 turns -0.0 into 0.0, so a turtle that turned by exactly 180 degrees does not
-// print "(-0, 1, 0)".
-double unsigned0(double v) {
-    return v + 0.0;
-}
-
-bool isFinite(const Vec3& p) {
-    return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
-}
-
 Rgb hex(unsigned rgb) {
     return {static_cast<float>((rgb >> 16) & 0xff) / 255.0f,
             static_cast<float>((rgb >> 8) & 0xff) / 255.0f,
@@ -25,23 +15,6 @@ Rgb hex(unsigned rgb) {
 }
 
 }  // namespace
-
-std::ostream& operator<<(std::ostream& os, const Vec3& v) {
-    return os << '(' << unsigned0(v.x) << ", " << unsigned0(v.y) << ", " << unsigned0(v.z) << ')';
-}
-
-std::ostream& operator<<(std::ostream& os, const Rgb& c) {
-    auto byte = [](float v) {
-        return static_cast<int>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255));
-    };
-    const char* digits = "0123456789abcdef";
-    std::string s = "#";
-    for (int b : {byte(c.r), byte(c.g), byte(c.b)}) {
-        s += digits[b >> 4];
-        s += digits[b & 15];
-    }
-    return os << s;
-}
 
 void Bounds::extend(const Vec3& p) {
     min.x = std::min(min.x, p.x);

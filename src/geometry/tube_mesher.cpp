@@ -6,11 +6,9 @@
 #include <cmath>
 #include <numbers>
 
-#include "mesh_math.hpp"
+#include "graftal/vec3.hpp"
 
 namespace graftal {
-
-using meshing::Vector3;
 
 namespace {
 
@@ -28,28 +26,28 @@ constexpr double kMinRelativeLength = 1e-10;
 
 // Where a segment goes; `length` is 0 when it has no usable direction.
 struct Direction {
-    Vector3 unit;
+    Vec3 unit;
     double length = 0;
 };
 
 Direction directionOf(const Segment& s) {
-    const Vector3 a(s.a), b(s.b);
-    if (!meshing::isFinite(a) || !meshing::isFinite(b)) return {};
-    const Vector3 ab = b - a;
-    const double l = meshing::length(ab);
-    const double scale = std::max(meshing::length(a), meshing::length(b));
+    const Vec3 a(s.a), b(s.b);
+    if (!isFinite(a) || !isFinite(b)) return {};
+    const Vec3 ab = b - a;
+    const double l = length(ab);
+    const double scale = std::max(length(a), length(b));
     if (!(l > kMinRelativeLength * scale) || !std::isfinite(l)) return {};
     return {(1.0 / l) * ab, l};
 }
 
 // Rotates the frame vector `u` (perpendicular to `from`) by the smallest rotation taking
 // `from` to `to`: parallel transport, which is what keeps a tube from twisting.
-Vector3 transport(const Vector3& u, const Vector3& from, const Vector3& to) {
-    const Vector3 k = meshing::cross(from, to);
-    const double c = meshing::dot(from, to);
-    const Vector3 rotated = c * u + meshing::cross(k, u) + (meshing::dot(k, u) / (1 + c)) * k;
+Vec3 transport(const Vec3& u, const Vec3& from, const Vec3& to) {
+    const Vec3 k = cross(from, to);
+    const double c = dot(from, to);
+    const Vec3 rotated = c * u + cross(k, u) + (dot(k, u) / (1 + c)) * k;
     // Renormalising against `to` stops rounding errors from accumulating along long axes.
-    return meshing::perpendicularPart(rotated, to);
+    return perpendicularPart(rotated, to);
 }
 
 // Appends to a mesh whose storage has been reserved.
@@ -57,9 +55,9 @@ class Emitter {
   public:
     explicit Emitter(Mesh& mesh) : mesh_(mesh) {}
 
-    std::uint32_t vertex(const Vector3& p, const Vector3& n) {
-        mesh_.positions.push_back(p.toVec3f());
-        mesh_.normals.push_back(n.toVec3f());
+    std::uint32_t vertex(const Vec3& p, const Vec3& n) {
+        mesh_.positions.push_back(toVec3f(p));
+        mesh_.normals.push_back(toVec3f(n));
         return static_cast<std::uint32_t>(mesh_.positions.size() - 1);
     }
     void triangle(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint16_t color) {
@@ -106,14 +104,14 @@ bool TubeMesher::canJoin(std::uint32_t p, std::uint32_t s) const {
     const Segment& before = scene_.segments[p];
     const Segment& after = scene_.segments[s];
     const Direction dp = directionOf(before), ds = directionOf(after);
-    const double gap = meshing::length(Vector3(after.a) - Vector3(before.b));
+    const double gap = length(Vec3(after.a) - Vec3(before.b));
     if (!(gap <= kJoinTolerance * std::max(dp.length, ds.length))) return false;
-    const double c = meshing::dot(dp.unit, ds.unit);
+    const double c = dot(dp.unit, ds.unit);
     if (c < kMaxBendCos) return false;
     const double r = radius(before.width);
     if (!(r > 0)) return false;
     // The mitre leans ring vertices along the axis by up to r * tan(bend / 2).
-    const double tanHalfBend = meshing::length(meshing::cross(dp.unit, ds.unit)) / (1 + c);
+    const double tanHalfBend = length(cross(dp.unit, ds.unit)) / (1 + c);
     return r * tanHalfBend <= kMitreReach * std::min(dp.length, ds.length);
 }
 
@@ -142,9 +140,9 @@ void TubeMesher::plan() {
         if (const std::uint32_t rival = next_[before]; rival != kNoSegment) {
             // Two segments continue the same one (a branch marked as a continuation): the
             // straighter one carries the tube on, the other starts a tube of its own.
-            const Vector3 db = directionOf(segments[before]).unit;
-            const double rivalCos = meshing::dot(db, directionOf(segments[rival]).unit);
-            if (rivalCos >= meshing::dot(db, d.unit)) continue;
+            const Vec3 db = directionOf(segments[before]).unit;
+            const double rivalCos = dot(db, directionOf(segments[rival]).unit);
+            if (rivalCos >= dot(db, d.unit)) continue;
             flags_[rival] &= static_cast<std::uint8_t>(~kJoinedStart);
         }
         next_[before] = s;
@@ -183,29 +181,28 @@ void TubeMesher::appendAxis(std::uint32_t first, Mesh& mesh) const {
 
     // A ring of radius r around `centre` in the plane perpendicular to the unit vector d,
     // leaned by the mitre towards `dn` when that is given. Normals follow the taper.
-    auto ring = [&](const Vector3& centre, const Vector3& d, const Vector3& u, double r,
-                    double slope, const Vector3* dn, const Vector3& un, double slopeN) {
-        const Vector3 v = meshing::cross(d, u);
-        const Vector3 vn = dn ? meshing::cross(*dn, un) : Vector3{};
-        const double lean = dn ? 1 / (1 + meshing::dot(d, *dn)) : 0;
+    auto ring = [&](const Vec3& centre, const Vec3& d, const Vec3& u, double r, double slope,
+                    const Vec3* dn, const Vec3& un, double slopeN) {
+        const Vec3 v = cross(d, u);
+        const Vec3 vn = dn ? cross(*dn, un) : Vec3{};
+        const double lean = dn ? 1 / (1 + dot(d, *dn)) : 0;
         const std::uint32_t start = static_cast<std::uint32_t>(mesh.positions.size());
         for (std::uint32_t i = 0; i < n; ++i) {
-            const Vector3 e = cos_[i] * u + sin_[i] * v;
-            Vector3 normal = meshing::normalizedOr(e - slope * d, e);
-            Vector3 p = centre + r * e;
+            const Vec3 e = cos_[i] * u + sin_[i] * v;
+            Vec3 normal = normalizedOr(e - slope * d, e);
+            Vec3 p = centre + r * e;
             if (dn) {
                 // Sliding along d onto the plane bisecting the joint puts the vertex on both
                 // cylinders at once; the frames agree because `un` is u transported.
-                p = p - (r * meshing::dot(e, *dn) * lean) * d;
-                const Vector3 en = cos_[i] * un + sin_[i] * vn;
-                normal = meshing::normalizedOr(
-                    normal + meshing::normalizedOr(en - slopeN * (*dn), en), e);
+                p = p - (r * dot(e, *dn) * lean) * d;
+                const Vec3 en = cos_[i] * un + sin_[i] * vn;
+                normal = normalizedOr(normal + normalizedOr(en - slopeN * (*dn), en), e);
             }
             out.vertex(p, normal);
         }
         return start;
     };
-    auto cap = [&](const Vector3& centre, const Vector3& normal, std::uint32_t rim, bool start,
+    auto cap = [&](const Vec3& centre, const Vec3& normal, std::uint32_t rim, bool start,
                    std::uint16_t color) {
         const std::uint32_t c = out.vertex(centre, normal);
         for (std::uint32_t i = 0; i < n; ++i) {
@@ -220,9 +217,9 @@ void TubeMesher::appendAxis(std::uint32_t first, Mesh& mesh) const {
     std::uint32_t s = first;
     const Segment* segment = &segments[s];
     Direction d = directionOf(*segment);
-    const Vector3 a(segment->a);
-    Vector3 b(segment->b);
-    Vector3 u = meshing::perpendicularPart(Vector3(segment->up), d.unit);
+    const Vec3 a(segment->a);
+    Vec3 b(segment->b);
+    Vec3 u = perpendicularPart(Vec3(segment->up), d.unit);
     double rA = startRadius(s), rB = radius(segment->width);
     double slope = (rB - rA) / d.length;
 
@@ -239,7 +236,7 @@ void TubeMesher::appendAxis(std::uint32_t first, Mesh& mesh) const {
         const std::uint32_t following = next_[s];
         std::uint32_t ringB;
         bool apexB = false;
-        Vector3 uNext;
+        Vec3 uNext;
         Direction dNext;
         double rNext = 0, slopeNext = 0;
         if (following == kNoSegment) {
@@ -268,7 +265,7 @@ void TubeMesher::appendAxis(std::uint32_t first, Mesh& mesh) const {
         }
         s = following;
         segment = &segments[s];
-        b = Vector3(segment->b);
+        b = Vec3(segment->b);
         d = dNext;
         u = uNext;
         rA = rB;

@@ -158,31 +158,37 @@ class ModelBuilder {
 }  // namespace
 
 void writeGlb(const Mesh& mesh, const std::filesystem::path& path) {
-    mesh_file::checkMesh(mesh, path, "glTF");
-    // Opened first, so that a missing directory is reported before any work is done.
-    mesh_file::AtomicFile file(path, "glTF");
-    const std::vector<mesh_file::ColorGroup> groups = mesh_file::groupByColor(mesh);
-    mesh_file::VertexSplitter splitter(mesh);
+    const std::string format(fileFormatInfo(FileFormat::Glb).name);
+    mesh_file::checkMesh(mesh, path, format);
+    // The directory is checked first, so that a missing one is reported before any work.
+    writeStreamAtomically(
+        path,
+        [&](std::ostream& file) {
+            const std::vector<mesh_file::ColorGroup> groups = mesh_file::groupByColor(mesh);
+            mesh_file::VertexSplitter splitter(mesh);
 
-    ModelBuilder builder;
-    // Exact unless vertices are shared by colours (then they are written once per colour).
-    builder.reserve(
-        std::min(kMaxBinaryBytes, 24 * mesh.positions.size() + 4 * mesh.indices.size()));
-    tinygltf::Mesh gltfMesh;
-    gltfMesh.name = "graftal";
-    for (const mesh_file::ColorGroup& g : groups) {
-        const int material = builder.addMaterial(g.color, mesh_file::paletteColor(mesh, g.color));
-        builder.addPrimitive(mesh, splitter.split(g), material, gltfMesh);
-        if (builder.binarySize() > kMaxBinaryBytes)
-            throw mesh_file::fileError(path,
-                                       "cannot write glTF: the mesh is larger than the 4 GB a "
-                                       ".glb file can hold");
-    }
-    const tinygltf::Model model = builder.finish(std::move(gltfMesh));
-    tinygltf::TinyGLTF gltf;
-    if (!gltf.WriteGltfSceneToStream(&model, file.stream(), false, true))
-        throw mesh_file::fileError(path, "cannot write glTF: the glTF library failed");
-    file.commit();
+            ModelBuilder builder;
+            // Exact unless vertices are shared by colours (then they are written once per
+            // colour).
+            builder.reserve(
+                std::min(kMaxBinaryBytes, 24 * mesh.positions.size() + 4 * mesh.indices.size()));
+            tinygltf::Mesh gltfMesh;
+            gltfMesh.name = "graftal";
+            for (const mesh_file::ColorGroup& g : groups) {
+                const int material =
+                    builder.addMaterial(g.color, mesh_file::paletteColor(mesh, g.color));
+                builder.addPrimitive(mesh, splitter.split(g), material, gltfMesh);
+                if (builder.binarySize() > kMaxBinaryBytes)
+                    throw fileError(path, "cannot write " + format +
+                                              ": the mesh is larger than the 4 GB a .glb file "
+                                              "can hold");
+            }
+            const tinygltf::Model model = builder.finish(std::move(gltfMesh));
+            tinygltf::TinyGLTF gltf;
+            if (!gltf.WriteGltfSceneToStream(&model, file, false, true))
+                throw fileError(path, "cannot write " + format + ": the glTF library failed");
+        },
+        format);
 }
 
 }  // namespace graftal

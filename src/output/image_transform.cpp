@@ -100,12 +100,9 @@ double defaultLineWidth(double ink, bool anySegments, const Bounds& bounds,
 }
 
 std::optional<ImageFormat> imageFormatFor(const std::filesystem::path& path) {
-    std::string ext = path.extension().string();
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    if (ext == ".svg") return ImageFormat::Svg;
-    if (ext == ".png") return ImageFormat::Png;
-    if (ext == ".pdf") return ImageFormat::Pdf;
-    return std::nullopt;
+    const std::optional<FileFormat> format = fileFormatFor(path);
+    if (!format || fileFormatInfo(*format).kind != FormatKind::Picture) return std::nullopt;
+    return format;
 }
 
 }  // namespace graftal

@@ -1,90 +1,30 @@
-// What the 3D writers (OBJ, PLY, glTF) share: writing a file atomically, checking the mesh
-// they are given, and the mesh's triangles grouped into one material per colour.
+// What the 3D writers (OBJ, PLY, glTF) share: checking the mesh they are given, and the
+// mesh's triangles grouped into one material per colour. They write through
+// writeStreamAtomically (atomic_file.hpp).
 #pragma once
-
-#include <unistd.h>
 
 #include <algorithm>
 #include <array>
-#include <atomic>
-#include <cerrno>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <string>
-#include <system_error>
+#include <string_view>
 #include <vector>
 
+#include "graftal/atomic_file.hpp"
 #include "graftal/diagnostics.hpp"
 #include "graftal/mesh.hpp"
 #include "graftal/output.hpp"
 
 namespace graftal::mesh_file {
 
-inline Error fileError(const std::filesystem::path& path, const std::string& message) {
-    return Error(SourceLocation{path.string(), 0, 0}, message);
-}
-
-// A file that appears under its name only when complete: it is written to a hidden
-// temporary beside the target (rename is atomic only within one file system) and renamed
-// over the target by commit(). Destroyed uncommitted, after an error, it leaves nothing.
-class AtomicFile {
-  public:
-    // `format` names the kind of file in messages ("OBJ").
-    AtomicFile(std::filesystem::path target, std::string format)
-        : target_(std::move(target)), format_(std::move(format)) {
-        namespace fs = std::filesystem;
-        const fs::path dir = target_.parent_path().empty() ? fs::path(".") : target_.parent_path();
-        std::error_code ec;
-        if (!fs::is_directory(dir, ec))
-            throw fileError(
-                target_, "cannot write " + format_ + ": '" + dir.string() +
-                             (fs::exists(dir, ec) ? "' is not a directory" : "' does not exist"));
-        temporary_ = temporaryPathBeside(target_);
-        out_.open(temporary_, std::ios::binary | std::ios::trunc);
-        if (!out_)
-            throw fileError(target_, "cannot write " + format_ + ": cannot create a file in '" +
-                                         dir.string() + "': " + std::strerror(errno));
-    }
-    AtomicFile(const AtomicFile&) = delete;
-    AtomicFile& operator=(const AtomicFile&) = delete;
-    ~AtomicFile() {
-        if (committed_) return;
-        out_.close();
-        std::error_code ec;
-        std::filesystem::remove(temporary_, ec);
-    }
-
-    std::ostream& stream() { return out_; }
-    void write(const void* data, std::size_t size) {
-        out_.write(static_cast<const char*>(data), static_cast<std::streamsize>(size));
-    }
-
-    void commit() {
-        out_.close();
-        if (!out_)
-            throw fileError(target_, "cannot write " + format_ + ": write failed (disk full?)");
-        std::error_code ec;
-        std::filesystem::rename(temporary_, target_, ec);
-        if (ec) throw fileError(target_, "cannot write " + format_ + ": " + ec.message());
-        committed_ = true;
-    }
-
-  private:
-    std::filesystem::path target_, temporary_;
-    std::string format_;
-    std::ofstream out_;
-    bool committed_ = false;
-};
-
 // Writers index arrays without further checks, so a malformed mesh is refused up front.
 inline void checkMesh(const Mesh& mesh, const std::filesystem::path& path,
-                      const std::string& format) {
+                      std::string_view format) {
     auto bad = [&](const std::string& what) {
-        return fileError(path, "cannot write " + format + ": invalid mesh: " + what);
+        return fileError(path, "cannot write " + std::string(format) + ": invalid mesh: " + what);
     };
     if (mesh.normals.size() != mesh.positions.size())
         throw bad("it has " + std::to_string(mesh.normals.size()) + " normals for " +

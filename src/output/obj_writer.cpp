@@ -15,9 +15,7 @@ namespace {
 // plant; to_chars gives the shortest text that reads back as the same float.
 class TextBuffer {
   public:
-    explicit TextBuffer(mesh_file::AtomicFile& file) : file_(file) {
-        text_.reserve(kFlushAt + 256);
-    }
+    explicit TextBuffer(std::ostream& out) : out_(out) { text_.reserve(kFlushAt + 256); }
 
     TextBuffer& operator<<(const std::string& s) {
         text_ += s;
@@ -39,7 +37,7 @@ class TextBuffer {
         return flushIfFull();
     }
     void flush() {
-        file_.write(text_.data(), text_.size());
+        out_.write(text_.data(), static_cast<std::streamsize>(text_.size()));
         text_.clear();
     }
 
@@ -51,7 +49,7 @@ class TextBuffer {
         return *this;
     }
 
-    mesh_file::AtomicFile& file_;
+    std::ostream& out_;
     std::string text_;
 };
 
@@ -67,18 +65,19 @@ void writeVectors(TextBuffer& out, const char* tag, const std::vector<Vec3f>& ve
 }  // namespace
 
 void writeObj(const Mesh& mesh, const std::filesystem::path& path) {
-    mesh_file::checkMesh(mesh, path, "OBJ");
+    const std::string format(fileFormatInfo(FileFormat::Obj).name);
+    mesh_file::checkMesh(mesh, path, format);
     std::filesystem::path mtlPath = path;
     mtlPath.replace_extension(".mtl");
     if (mtlPath == path)
-        throw mesh_file::fileError(path, "cannot write OBJ: the materials go to '" +
-                                             mtlPath.string() + "'; use the extension .obj");
+        throw fileError(path, "cannot write " + format + ": the materials go to '" +
+                                  mtlPath.string() + "'; use the extension " +
+                                  std::string(fileFormatInfo(FileFormat::Obj).extension));
     // Both files are complete before either is renamed into place, the materials first so
-    // that a reader of the new OBJ never finds the old .mtl.
-    mesh_file::AtomicFile objFile(path, "OBJ");
-    mesh_file::AtomicFile mtlFile(mtlPath, "MTL");
+    // that a reader of the new OBJ never finds the old .mtl: the materials are written and
+    // renamed while the OBJ is still a temporary.
     const std::vector<mesh_file::ColorGroup> groups = mesh_file::groupByColor(mesh);
-    {
+    auto writeMaterials = [&](std::ostream& mtlFile) {
         TextBuffer mtl(mtlFile);
         mtl << "# graftal palette: one material per colour\n";
         for (const mesh_file::ColorGroup& g : groups) {
@@ -89,8 +88,8 @@ void writeObj(const Mesh& mesh, const std::filesystem::path& path) {
             mtl.number(c.b) << "\nKa 0 0 0\nKs 0 0 0\nd 1\nillum 1\n";
         }
         mtl.flush();
-    }
-    {
+    };
+    auto writeGeometry = [&](std::ostream& objFile) {
         TextBuffer obj(objFile);
         obj << "# graftal mesh: ";
         obj.number(mesh.positions.size()) << " vertices, ";
@@ -114,9 +113,9 @@ void writeObj(const Mesh& mesh, const std::filesystem::path& path) {
             }
         }
         obj.flush();
-    }
-    mtlFile.commit();
-    objFile.commit();
+        writeStreamAtomically(mtlPath, writeMaterials, "MTL");
+    };
+    writeStreamAtomically(path, writeGeometry, format);
 }
 
 }  // namespace graftal

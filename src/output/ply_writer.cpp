@@ -19,9 +19,7 @@ namespace {
 // Fixed-size records assembled in memory and written in large blocks.
 class BinaryBuffer {
   public:
-    explicit BinaryBuffer(mesh_file::AtomicFile& file) : file_(file) {
-        bytes_.reserve(kFlushAt + 64);
-    }
+    explicit BinaryBuffer(std::ostream& out) : out_(out) { bytes_.reserve(kFlushAt + 64); }
 
     template <class T>
     void put(T v) {
@@ -34,23 +32,19 @@ class BinaryBuffer {
         if (bytes_.size() >= kFlushAt) flush();
     }
     void flush() {
-        file_.write(bytes_.data(), bytes_.size());
+        out_.write(bytes_.data(), static_cast<std::streamsize>(bytes_.size()));
         bytes_.clear();
     }
 
   private:
     static constexpr std::size_t kFlushAt = 1 << 20;
 
-    mesh_file::AtomicFile& file_;
+    std::ostream& out_;
     std::string bytes_;
 };
 
-}  // namespace
-
-void writePly(const Mesh& mesh, const std::filesystem::path& path) {
-    mesh_file::checkMesh(mesh, path, "PLY");
-    // Opened first, so that a missing directory is reported before any work is done.
-    mesh_file::AtomicFile file(path, "PLY");
+// The header and the records, into the temporary file.
+void writeMesh(const Mesh& mesh, const std::filesystem::path& path, std::ostream& file) {
     const std::vector<mesh_file::ColorGroup> groups = mesh_file::groupByColor(mesh);
     mesh_file::VertexSplitter splitter(mesh);
     std::vector<mesh_file::GroupVertices> split;
@@ -62,19 +56,19 @@ void writePly(const Mesh& mesh, const std::filesystem::path& path) {
     }
     // Face lists are declared as `int`.
     if (vertexCount > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
-        throw mesh_file::fileError(path, "cannot write PLY: " + std::to_string(vertexCount) +
-                                             " vertices are more than PLY's int indices allow");
+        throw fileError(path, "cannot write PLY: " + std::to_string(vertexCount) +
+                                  " vertices are more than PLY's int indices allow");
 
-    file.stream() << "ply\n"
-                  << "format binary_little_endian 1.0\n"
-                  << "comment graftal mesh\n"
-                  << "element vertex " << vertexCount << "\n"
-                  << "property float x\nproperty float y\nproperty float z\n"
-                  << "property float nx\nproperty float ny\nproperty float nz\n"
-                  << "property uchar red\nproperty uchar green\nproperty uchar blue\n"
-                  << "element face " << mesh.triangleCount() << "\n"
-                  << "property list uchar int vertex_indices\n"
-                  << "end_header\n";
+    file << "ply\n"
+         << "format binary_little_endian 1.0\n"
+         << "comment graftal mesh\n"
+         << "element vertex " << vertexCount << "\n"
+         << "property float x\nproperty float y\nproperty float z\n"
+         << "property float nx\nproperty float ny\nproperty float nz\n"
+         << "property uchar red\nproperty uchar green\nproperty uchar blue\n"
+         << "element face " << mesh.triangleCount() << "\n"
+         << "property list uchar int vertex_indices\n"
+         << "end_header\n";
 
     BinaryBuffer out(file);
     for (std::size_t k = 0; k < groups.size(); ++k) {
@@ -98,7 +92,16 @@ void writePly(const Mesh& mesh, const std::filesystem::path& path) {
         base += static_cast<std::int32_t>(g.vertices.size());
     }
     out.flush();
-    file.commit();
+}
+
+}  // namespace
+
+void writePly(const Mesh& mesh, const std::filesystem::path& path) {
+    const std::string format(fileFormatInfo(FileFormat::Ply).name);
+    mesh_file::checkMesh(mesh, path, format);
+    // The directory is checked first, so that a missing one is reported before any work.
+    writeStreamAtomically(
+        path, [&](std::ostream& file) { writeMesh(mesh, path, file); }, format);
 }
 
 }  // namespace graftal

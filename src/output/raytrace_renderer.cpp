@@ -22,6 +22,7 @@
 #include <thread>
 #include <vector>
 
+#include "core/random_stream.hpp"
 #include "graftal/diagnostics.hpp"
 #include "graftal/output.hpp"
 #include "graftal/render3d.hpp"
@@ -58,52 +59,10 @@ constexpr double kFallbackColor = 0.5;
 
 static_assert(sizeof(Vec3f) == 3 * sizeof(float), "Embree reads positions as packed float3");
 
-// ---- small vector algebra (doubles: the camera is set up once, shading is cheap) --------
-
-struct V3 {
-    double x = 0, y = 0, z = 0;
-};
-
-V3 operator+(V3 a, V3 b) {
-    return {a.x + b.x, a.y + b.y, a.z + b.z};
-}
-V3 operator-(V3 a, V3 b) {
-    return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-V3 operator*(V3 a, double s) {
-    return {a.x * s, a.y * s, a.z * s};
-}
-double dot(V3 a, V3 b) {
-    return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-V3 cross(V3 a, V3 b) {
-    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-double length(V3 a) {
-    return std::sqrt(dot(a, a));
-}
-V3 normalized(V3 a) {
-    const double l = length(a);
-    return l > 0 ? a * (1 / l) : V3{};
-}
-V3 toV3(const Vec3& v) {
-    return {v.x, v.y, v.z};
-}
-V3 toV3(const Vec3f& v) {
-    return {v.x, v.y, v.z};
-}
-bool finite(const V3& v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
 // ---- errors ------------------------------------------------------------------------------
 
 Error renderError(const std::string& message) {
     return Error(SourceLocation{}, message);
-}
-
-Error fileError(const fs::path& path, const std::string& message) {
-    return Error(SourceLocation{path.string(), 0, 0}, message);
 }
 
 const char* embreeErrorName(RTCError code) {
@@ -164,12 +123,12 @@ void checkOptions(const RaytraceOptions& o) {
     const Camera& c = o.camera;
     if (!(c.fieldOfView > 0 && c.fieldOfView < 180))
         throw renderError("field of view must be between 0 and 180 degrees (exclusive)");
-    if (!finite(toV3(c.up)) || length(toV3(c.up)) == 0)
+    if (!isFinite(c.up) || length(c.up) == 0)
         throw renderError("the camera's up vector must be a finite, non-zero vector");
-    if ((c.viewpoint && !finite(toV3(*c.viewpoint))) || (c.target && !finite(toV3(*c.target))))
+    if ((c.viewpoint && !isFinite(*c.viewpoint)) || (c.target && !isFinite(*c.target)))
         throw renderError("the camera's viewpoint and target must be finite points");
     const Lighting& l = o.lighting;
-    if (!finite(toV3(l.sunDirection)) || !std::isfinite(l.sunIntensity) ||
+    if (!isFinite(l.sunDirection) || !std::isfinite(l.sunIntensity) ||
         !std::isfinite(l.skyIntensity) || l.sunIntensity < 0 || l.skyIntensity < 0)
         throw renderError("light direction and intensities must be finite, intensities >= 0");
 }
@@ -207,32 +166,32 @@ Bounds meshBounds(const Mesh& mesh) {
 // forward + u * right + v * up, u and v in [-1, 1] across the picture; an orthographic
 // camera moves the start instead and keeps the direction `forward`.
 struct View {
-    V3 eye, forward, right, up;
+    Vec3 eye, forward, right, up;
     bool orthographic = false;
 };
 
 // A unit vector perpendicular to `up` pointing out of the picture towards the viewer: +z
 // when up is the default +y. A z-up world has no +z front, so -y serves there.
-V3 frontDirection(V3 up) {
-    V3 front = V3{0, 0, 1} - up * up.z;
-    if (length(front) < 1e-6) front = V3{0, -1, 0} - up * (-up.y);
-    return normalized(front);
+Vec3 frontDirection(Vec3 up) {
+    Vec3 front = Vec3{0, 0, 1} - up * up.z;
+    if (length(front) < 1e-6) front = Vec3{0, -1, 0} - up * (-up.y);
+    return unitOrZero(front);
 }
 
 View makeView(const Camera& c, const Bounds& bounds, int width, int height) {
-    const V3 worldUp = normalized(toV3(c.up));
+    const Vec3 worldUp = unitOrZero(c.up);
     const double aspect = static_cast<double>(width) / height;
     const double tanHalfV = std::tan(c.fieldOfView * std::numbers::pi / 360);
 
-    V3 lo{0, 0, 0}, hi{0, 0, 0};
+    Vec3 lo{0, 0, 0}, hi{0, 0, 0};
     if (!bounds.empty()) {
-        lo = toV3(bounds.min);
-        hi = toV3(bounds.max);
+        lo = bounds.min;
+        hi = bounds.max;
     }
-    const V3 target = c.target ? toV3(*c.target) : (lo + hi) * 0.5;
-    V3 eye;
+    const Vec3 target = c.target ? *c.target : (lo + hi) * 0.5;
+    Vec3 eye;
     if (c.viewpoint) {
-        eye = toV3(*c.viewpoint);
+        eye = *c.viewpoint;
     } else {
         // The sphere around the target that holds the whole box (the box's own bounding
         // sphere when the target is its centre) is framed: seen from distance d it spans
@@ -240,32 +199,32 @@ View makeView(const Camera& c, const Bounds& bounds, int width, int height) {
         // plane at distance 1, to be kFrameFill of the narrower half-side.
         double radius = 0;
         for (int k = 0; k < 8; ++k) {
-            const V3 corner{k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z};
+            const Vec3 corner{k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z};
             radius = std::max(radius, length(corner - target));
         }
         if (!(radius > 0)) radius = 1;  // a single point: any distance shows it
         const double elevation = kFrameElevationDegrees * std::numbers::pi / 180;
-        const V3 direction =
+        const Vec3 direction =
             frontDirection(worldUp) * std::cos(elevation) + worldUp * std::sin(elevation);
         const double halfAngle = std::atan(kFrameFill * tanHalfV * std::min(1.0, aspect));
         eye = target + direction * (radius / std::sin(halfAngle));
     }
 
-    const V3 toTarget = target - eye;
+    const Vec3 toTarget = target - eye;
     const double distance = length(toTarget);
     if (!(distance > 0)) throw renderError("the camera's viewpoint and target are the same point");
     View view;
     view.orthographic = c.orthographic;
     view.eye = eye;
     view.forward = toTarget * (1 / distance);
-    V3 right = cross(view.forward, worldUp);
+    Vec3 right = cross(view.forward, worldUp);
     if (length(right) < 1e-9) {
         // Looking straight along the up vector: any horizontal direction is as good.
-        const V3 axis = std::abs(view.forward.x) < 0.9 ? V3{1, 0, 0} : V3{0, 0, 1};
+        const Vec3 axis = std::abs(view.forward.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 0, 1};
         right = cross(view.forward, cross(axis, view.forward));
     }
-    right = normalized(right);
-    const V3 up = cross(right, view.forward);
+    right = unitOrZero(right);
+    const Vec3 up = cross(right, view.forward);
     // The orthographic window is what the perspective camera shows in the target's plane,
     // so switching projections keeps the plant the same size there.
     const double scale = c.orthographic ? distance : 1.0;
@@ -275,18 +234,6 @@ View makeView(const Camera& c, const Bounds& bounds, int width, int height) {
 }
 
 // ---- sampling ----------------------------------------------------------------------------
-
-// SplitMix64's finaliser: a counter-based source of jitter, so a sample's position depends
-// only on (pixel, sample) and not on which thread renders it or in what order.
-std::uint64_t mix(std::uint64_t z) {
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
-
-double unitDouble(std::uint64_t h) {
-    return static_cast<double>(h >> 11) * 0x1.0p-53;
-}
 
 // Stratification: the pixel is cut into a grid of exactly samplesPerPixel cells (as square
 // as the count allows, so no part of the pixel goes unsampled) and each sample is jittered
@@ -310,9 +257,9 @@ struct SampleGrid {
         const std::uint64_t key =
             (static_cast<std::uint64_t>(static_cast<std::uint32_t>(y)) << 32) |
             static_cast<std::uint32_t>(x);
-        const std::uint64_t h = mix(key ^ mix(static_cast<std::uint64_t>(s) + 1));
+        const std::uint64_t h = mix64(key ^ mix64(static_cast<std::uint64_t>(s) + 1));
         ox = ((s % columns) + unitDouble(h)) / columns;
-        oy = ((s / columns) + unitDouble(mix(h))) / rows;
+        oy = ((s / columns) + unitDouble(mix64(h))) / rows;
     }
 };
 
@@ -350,8 +297,8 @@ class Tracer {
           scene_(scene),
           view_(view),
           grid_(options.samplesPerPixel) {
-        sun_ = normalized(toV3(options.lighting.sunDirection));
-        skyUp_ = normalized(toV3(options.camera.up));
+        sun_ = unitOrZero(options.lighting.sunDirection);
+        skyUp_ = unitOrZero(options.camera.up);
         background_ = {srgbToLinear(options.background.r), srgbToLinear(options.background.g),
                        srgbToLinear(options.background.b)};
         backgroundBytes_[0] = srgbByte(options.background.r);
@@ -402,9 +349,9 @@ class Tracer {
     bool traceSample(double sx, double sy, Color& out) const {
         const double u = 2 * sx / options_.width - 1;
         const double v = 1 - 2 * sy / options_.height;
-        const V3 offset = view_.right * u + view_.up * v;
-        const V3 origin = view_.orthographic ? view_.eye + offset : view_.eye;
-        const V3 direction = view_.orthographic ? view_.forward : view_.forward + offset;
+        const Vec3 offset = view_.right * u + view_.up * v;
+        const Vec3 origin = view_.orthographic ? view_.eye + offset : view_.eye;
+        const Vec3 direction = view_.orthographic ? view_.forward : view_.forward + offset;
 
         RTCIntersectContext context;
         rtcInitIntersectContext(&context);
@@ -417,12 +364,12 @@ class Tracer {
             out = background_;
             return false;
         }
-        const V3 point = origin + direction * rh.ray.tfar;
-        out = shade(rh.hit.primID, rh.hit.u, rh.hit.v, point, normalized(direction));
+        const Vec3 point = origin + direction * rh.ray.tfar;
+        out = shade(rh.hit.primID, rh.hit.u, rh.hit.v, point, unitOrZero(direction));
         return true;
     }
 
-    static void setRay(RTCRay& ray, V3 origin, V3 direction) {
+    static void setRay(RTCRay& ray, Vec3 origin, Vec3 direction) {
         ray.org_x = static_cast<float>(origin.x);
         ray.org_y = static_cast<float>(origin.y);
         ray.org_z = static_cast<float>(origin.z);
@@ -437,20 +384,20 @@ class Tracer {
         ray.flags = 0;
     }
 
-    Color shade(unsigned prim, float u, float v, V3 point, V3 direction) const {
+    Color shade(unsigned prim, float u, float v, Vec3 point, Vec3 direction) const {
         const std::uint32_t* tri = mesh_.indices.data() + 3 * static_cast<std::size_t>(prim);
-        const V3 p0 = toV3(mesh_.positions[tri[0]]);
-        const V3 p1 = toV3(mesh_.positions[tri[1]]);
-        const V3 p2 = toV3(mesh_.positions[tri[2]]);
+        const Vec3 p0 = toVec3(mesh_.positions[tri[0]]);
+        const Vec3 p1 = toVec3(mesh_.positions[tri[1]]);
+        const Vec3 p2 = toVec3(mesh_.positions[tri[2]]);
         // The geometric normal by the mesh's own rule (counter-clockwise = front), so the
         // front/back decision does not depend on Embree's winding convention.
-        V3 ng = normalized(cross(p1 - p0, p2 - p0));
-        V3 n = ng;
+        Vec3 ng = unitOrZero(cross(p1 - p0, p2 - p0));
+        Vec3 n = ng;
         if (mesh_.normals.size() == mesh_.positions.size()) {
-            const V3 smooth =
-                normalized(toV3(mesh_.normals[tri[0]]) * (1.0 - u - v) +
-                           toV3(mesh_.normals[tri[1]]) * u + toV3(mesh_.normals[tri[2]]) * v);
-            if (finite(smooth) && length(smooth) > 0.5) n = smooth;
+            const Vec3 smooth =
+                unitOrZero(toVec3(mesh_.normals[tri[0]]) * (1.0 - u - v) +
+                           toVec3(mesh_.normals[tri[1]]) * u + toVec3(mesh_.normals[tri[2]]) * v);
+            if (isFinite(smooth) && length(smooth) > 0.5) n = smooth;
         }
         // Two-sided: a leaf seen from below shows its underside, lit as a surface facing
         // the viewer.
@@ -485,7 +432,7 @@ class Tracer {
         return c;
     }
 
-    bool inShadow(V3 origin) const {
+    bool inShadow(Vec3 origin) const {
         if (!options_.lighting.shadows) return false;
         RTCIntersectContext context;
         rtcInitIntersectContext(&context);
@@ -505,7 +452,7 @@ class Tracer {
     RTCScene scene_;
     View view_;
     SampleGrid grid_;
-    V3 sun_, skyUp_;
+    Vec3 sun_, skyUp_;
     Color background_;
     unsigned char backgroundBytes_[3] = {0, 0, 0};
     std::vector<Color> palette_;

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cstring>
 
-#include "parallel.hpp"
-#include "random_stream.hpp"
+#include "core/parallel.hpp"
+#include "core/random_stream.hpp"
 
 namespace graftal {
 

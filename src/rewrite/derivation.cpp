@@ -4,8 +4,7 @@
 
 #include <cmath>
 
-#include "graftal/turtle.hpp"
-#include "parallel.hpp"
+#include "core/parallel.hpp"
 #include "rewriting_engine.hpp"
 
 namespace graftal {
@@ -114,10 +113,14 @@ void Derivation::answerQueries(int stepNumber) {
     const ModuleString& walked = lsystem_.homomorphism.empty() ? s : seen;
     std::vector<bool> wanted(lsystem_.symbols.size(), false);
     for (Symbol q = kQueryE; q <= kQueryU; ++q) wanted[q] = true;
+    if (!options_.queryResolver)
+        throw Error(SourceLocation{lsystem_.file, 0, 0},
+                    "the query modules (?E ?P ?H ?L ?U) of step " + std::to_string(stepNumber) +
+                        " need the turtle, and the derivation was given none "
+                        "(DerivationOptions::queryResolver)");
     std::vector<TurtleFrame> frames;
-    static const ViewSettings defaultView;
-    traceTurtle(lsystem_, options_.view ? *options_.view : defaultView, walked, wanted,
-                [&](std::size_t, const TurtleFrame& f) { frames.push_back(f); });
+    options_.queryResolver(lsystem_, walked, wanted,
+                           [&](std::size_t, const TurtleFrame& f) { frames.push_back(f); });
 
     std::vector<std::size_t> positions;
     for (std::size_t i = 0; i < s.size(); ++i)
@@ -187,23 +190,13 @@ void Derivation::run(int steps) {
 }
 
 namespace {
-DerivationOptions withView(DerivationOptions options, const ViewSettings& view) {
-    if (!options.view) options.view = &view;
-    return options;
-}
 }  // namespace
 
 Derivation::Derivation(const Model& model, DerivationOptions options)
-    : Derivation(model.lsystem, std::move(options)) {
-    // A copy, so that a Derivation made from a temporary Model never points into it.
-    if (!options_.view) {
-        view_ = model.view;
-        options_.view = &*view_;
-    }
-}
+    : Derivation(model.lsystem, std::move(options)) {}
 
 ModuleString derive(const Model& model, int steps, DerivationOptions options) {
-    return derive(model.lsystem, steps, withView(std::move(options), model.view));
+    return derive(model.lsystem, steps, std::move(options));
 }
 
 ModuleString derive(const LSystem& lsystem, int steps, DerivationOptions options) {

@@ -5,8 +5,8 @@
 #include <cstring>
 #include <numeric>
 
-#include "parallel.hpp"
-#include "random_stream.hpp"
+#include "core/parallel.hpp"
+#include "core/random_stream.hpp"
 
 namespace graftal {
 

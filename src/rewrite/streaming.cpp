@@ -5,7 +5,7 @@
 // counter per level, and the counter-based random stream gives the materialised choices.
 #include "graftal/streaming.hpp"
 
-#include "parallel.hpp"
+#include "core/parallel.hpp"
 #include "rewriting_engine.hpp"
 
 namespace graftal {

@@ -17,7 +17,7 @@
 #include "graftal/lsystem.hpp"
 #include "graftal/model.hpp"
 #include "graftal/module_string.hpp"
-#include "graftal/streaming.hpp"
+#include "graftal/streamed_interpretation.hpp"
 
 namespace graftal::turtle {
 

@@ -1,8 +1,9 @@
 // The turtle fed by a streamed derivation: geometry for strings too large to hold.
+#include "graftal/streamed_interpretation.hpp"
+
 #include "graftal/streaming.hpp"
 #include "planar_measure.hpp"
 #include "streamed_sinks.hpp"
-#include "subtree_summaries.hpp"
 #include "turtle_machine.hpp"
 
 namespace graftal {
@@ -91,34 +92,12 @@ Scene interpretStreamed(const Model& model, int steps, const DerivationOptions& 
     return scene;
 }
 
-namespace {
-// Past this many segments a picture has far more strokes than pixels; subtrees smaller
-// than a pixel are then drawn as one stroke each (subtree_summaries.hpp). Below it the
-// picture is stroke for stroke the one the materialised path draws.
-constexpr double kSummariseAbove = 2e7;
-}  // namespace
-
-bool streamedPictureIsSummarised(const Model& model, int steps, std::size_t memoryLimit) {
-    SubtreeSummaries sums(model, steps, memoryLimit);
-    return sums.available() && sums.segments() > kSummariseAbove;
-}
-
-void renderStreamedPng(const Model& model, int steps, const DerivationOptions& options,
-                       const RenderOptions& render, const std::filesystem::path& path) {
-    const LSystem& ls = model.lsystem;
-    if (SubtreeSummaries sums(model, steps, options.memoryLimit);
-        sums.available() && sums.segments() > kSummariseAbove) {
-        renderSummarisedPng(model, sums, render, path);
-        return;
-    }
-    StreamedMeasure m = measureStreamed(model, steps, options, true);
-    StreamedPng png(render, m.bounds, m.ink, m.segments > 0, m.baseWidth, Scene::defaultPalette(),
-                    path);
-    PictureSink sink(png);
-    TurtleStream<PictureSink> stream(model, sink, nullptr);
-    streamDerivation(ls, steps, stream, options);
+void drawStreamed(const Model& model, int steps, const DerivationOptions& options,
+                  StreamedDrawing& drawing) {
+    DrawingSink sink(drawing);
+    TurtleStream<DrawingSink> stream(model, sink, nullptr);
+    streamDerivation(model.lsystem, steps, stream, options);
     stream.finish();
-    png.finish();
 }
 
 }  // namespace graftal

@@ -1,6 +1,7 @@
 // The geometry sinks of streamed passes: one measures what the turtle draws (counts,
-// bounds, ink) without keeping it, the other draws it straight into a streamed PNG. The
-// streamed turtle and the summarised walk (subtree_summaries.cpp) both use them.
+// bounds, ink) without keeping it, the other hands it to a StreamedDrawing (a streamed
+// PNG in src/output). The streamed turtle and the summarised walk (subtree_summaries.cpp)
+// both use them.
 #pragma once
 
 #include <algorithm>
@@ -8,8 +9,7 @@
 #include <span>
 #include <string>
 
-#include "graftal/output.hpp"
-#include "graftal/streaming.hpp"
+#include "graftal/streamed_interpretation.hpp"
 #include "planar_length.hpp"
 
 namespace graftal {
@@ -49,20 +49,20 @@ class MeasureSink {
     static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 };
 
-class PictureSink {
+class DrawingSink {
   public:
-    explicit PictureSink(StreamedPng& png) : png_(png) {}
+    explicit DrawingSink(StreamedDrawing& drawing) : drawing_(drawing) {}
     std::uint32_t segment(const Segment& s) {
-        png_.segment(s);
+        drawing_.segment(s);
         return kNoSegment;
     }
-    void polygon(std::span<const Vec3> v, std::uint16_t c) { png_.polygon(v, c); }
+    void polygon(std::span<const Vec3> v, std::uint16_t c) { drawing_.polygon(v, c); }
     void surface(const std::string&, const SurfaceInstance&) {}
     void baseWidth(float) {}
     void finish(bool) {}
 
   private:
-    StreamedPng& png_;
+    StreamedDrawing& drawing_;
 };
 
 }  // namespace graftal

@@ -123,9 +123,7 @@ SubtreeMotion SubtreeSummaries::leaf(Symbol symbol) const {
     const ViewSettings& v = view_;
     double delta = v.angleDegrees * turtle::kPi / 180.0;
     double turn = v.clockwisePlus ? -1.0 : 1.0;
-    TurtleOp op = symbol < kFirstDeclaredSymbol ? turtle::opFor(symbol) : TurtleOp::None;
-    if (symbol >= kFirstDeclaredSymbol && ls_.symbols.name(symbol).starts_with("~"))
-        op = TurtleOp::Surface;
+    const TurtleOp op = turtle::opOf(ls_, symbol);
     switch (op) {
         case TurtleOp::None:
             break;
@@ -243,13 +241,13 @@ bool inside(const Bounds& b, const Vec3& p, double r) {
 
 }  // namespace
 
-StreamedMeasure measureSummarised(const Model& model, const SubtreeSummaries& sums,
-                                  const RenderOptions& render, double pixelTolerance) {
+StreamedMeasure measureSummarised(const Model& model, const SubtreeSummaries& sums, int imageSide,
+                                  double pixelTolerance) {
     StreamedMeasure result;
     result.symbolCounts.assign(model.lsystem.symbols.size(), 0);
     MeasureSink sink(result);
     turtle::TurtleMachine<MeasureSink> machine(model, sink);
-    const double pixels = std::max(1, std::max(render.width, render.height));
+    const double pixels = std::max(1, imageSide);
     walk(sums, machine, [&](const SubtreeMotion& m) {
         turtle::TurtleState& t = machine.state();
         const Bounds& b = result.bounds;
@@ -276,22 +274,16 @@ StreamedMeasure measureSummarised(const Model& model, const SubtreeSummaries& su
     return result;
 }
 
-void renderSummarisedPng(const Model& model, const SubtreeSummaries& sums,
-                         const RenderOptions& render, const std::filesystem::path& path,
-                         double dotRadius, double pixelTolerance) {
-    StreamedMeasure measure = measureSummarised(model, sums, render, pixelTolerance);
-    StreamedPng png(render, measure.bounds, measure.ink, measure.segments > 0, measure.baseWidth,
-                    Scene::defaultPalette(), path);
-    const ImageTransform transform = ImageTransform::fit(measure.bounds, render);
-    PictureSink sink(png);
-    turtle::TurtleMachine<PictureSink> machine(model, sink);
+void drawSummarised(const Model& model, const SubtreeSummaries& sums, double scale, double dotRadius,
+                    StreamedDrawing& drawing) {
+    DrawingSink sink(drawing);
+    turtle::TurtleMachine<DrawingSink> machine(model, sink);
     walk(sums, machine, [&](const SubtreeMotion& m) {
-        if (m.segments > 0 && m.radius * transform.scale > dotRadius) return false;
+        if (m.segments > 0 && m.radius * scale > dotRadius) return false;
         Segment chord = jump(machine.state(), m);
-        if (m.segments > 0) png.segment(chord);
+        if (m.segments > 0) drawing.segment(chord);
         return true;
     });
-    png.finish();
 }
 
 }  // namespace graftal

@@ -11,13 +11,12 @@
 #pragma once
 
 #include <cstdint>
-#include <filesystem>
 #include <span>
 #include <vector>
 
 #include "graftal/lsystem.hpp"
 #include "graftal/model.hpp"
-#include "graftal/output.hpp"
+#include "graftal/streamed_interpretation.hpp"
 #include "graftal/streaming.hpp"
 
 namespace graftal {
@@ -77,17 +76,16 @@ class SubtreeSummaries {
     std::vector<SubtreeMotion> motions_;
 };
 
-// A 2D PNG of the derivation, as renderStreamedPng draws it, but expanding only subtrees
-// wider than `dotRadius` pixels; each smaller one is one stroke from its start to its end.
-// The first pass finds the bounds to within `pixelTolerance` of a pixel.
-void renderSummarisedPng(const Model& model, const SubtreeSummaries& summaries,
-                         const RenderOptions& render, const std::filesystem::path& path,
-                         double dotRadius = 0.25, double pixelTolerance = 0.02);
-
-// The first pass alone: bounds, ink and segment count of the derivation, expanding only
-// subtrees whose extent could still move the bounds by more than `pixelTolerance` of a
-// pixel of an image of `render`'s size.
+// The first pass of a summarised picture: bounds, ink and segment count of the
+// derivation, expanding only subtrees whose extent could still move the bounds by more
+// than `pixelTolerance` of a pixel of an image whose larger side is `imageSide` pixels.
 StreamedMeasure measureSummarised(const Model& model, const SubtreeSummaries& summaries,
-                                  const RenderOptions& render, double pixelTolerance = 0.02);
+                                  int imageSide, double pixelTolerance = 0.02);
+
+// The second pass: walks the derivation as drawStreamed does, but expands only subtrees
+// whose radius times `scale` (pixels per model unit) exceeds `dotRadius`; each smaller one
+// goes to `drawing` as one segment from its start to its end.
+void drawSummarised(const Model& model, const SubtreeSummaries& summaries, double scale,
+                    double dotRadius, StreamedDrawing& drawing);
 
 }  // namespace graftal

@@ -46,4 +46,22 @@ void traceTurtle(const LSystem& lsystem, const ViewSettings& view, const ModuleS
     machine.run(modules, &wanted, &visit);
 }
 
+QueryResolver turtleQueryResolver(ViewSettings view) {
+    return [view = std::move(view)](
+               const LSystem& lsystem, const ModuleString& modules, const std::vector<bool>& wanted,
+               const std::function<void(std::size_t, const TurtleFrame&)>& visit) {
+        traceTurtle(lsystem, view, modules, wanted, visit);
+    };
+}
+
+ModuleString deriveWithQueries(const LSystem& lsystem, int steps, DerivationOptions options) {
+    if (!options.queryResolver) options.queryResolver = turtleQueryResolver();
+    return derive(lsystem, steps, std::move(options));
+}
+
+ModuleString deriveWithQueries(const Model& model, int steps, DerivationOptions options) {
+    if (!options.queryResolver) options.queryResolver = turtleQueryResolver(model.view);
+    return derive(model.lsystem, steps, std::move(options));
+}
+
 }  // namespace graftal

@@ -17,10 +17,10 @@
 #include <string>
 #include <vector>
 
-#include "graftal/environment.hpp"
 #include "graftal/lsystem.hpp"
 #include "graftal/model.hpp"
 #include "graftal/scene.hpp"
+#include "graftal/vec3.hpp"
 
 namespace graftal::turtle {
 
@@ -106,14 +106,22 @@ inline TurtleOp opFor(Symbol s) {
 }
 
 // The operation of every symbol id: opFor() for characters, Surface for declared ~names.
+// What symbol `s` of `ls` does to the turtle: the one place that says it. The three walks
+// (this machine, the planar walk of planar_measure.cpp and the subtree summaries) all
+// switch on these operations; the planar walk keeps a switch of its own rather than
+// calling into the machine, because a call in its loop would make it slower (see there).
+inline TurtleOp opOf(const LSystem& ls, Symbol s) {
+    if (s >= ls.symbols.size()) return TurtleOp::None;
+    if (s >= kFirstDeclaredSymbol) {
+        const std::string& name = ls.symbols.name(s);
+        if (name.size() > 1 && name[0] == '~') return TurtleOp::Surface;
+    }
+    return opFor(s);
+}
+
 inline std::array<TurtleOp, kMaxSymbols> opTable(const LSystem& ls) {
     std::array<TurtleOp, kMaxSymbols> ops{};
-    for (std::size_t s = 0; s < ops.size(); ++s)
-        ops[s] = s < ls.symbols.size() ? opFor(static_cast<Symbol>(s)) : TurtleOp::None;
-    for (std::size_t s = kFirstDeclaredSymbol; s < ls.symbols.size(); ++s) {
-        const std::string& name = ls.symbols.name(static_cast<Symbol>(s));
-        if (name.size() > 1 && name[0] == '~') ops[s] = TurtleOp::Surface;
-    }
+    for (std::size_t s = 0; s < ops.size(); ++s) ops[s] = opOf(ls, static_cast<Symbol>(s));
     return ops;
 }
 

@@ -148,16 +148,7 @@ void ModuleString::print(std::ostream& os, const SymbolTable& table) const {
     std::string chunk;
     chunk.reserve(1 << 16);
     for (std::size_t i = 0; i < symbols_.size(); ++i) {
-        chunk += table.name(symbols_[i]);
-        auto args = params(i);
-        if (!args.empty()) {
-            chunk += '(';
-            for (std::size_t k = 0; k < args.size(); ++k) {
-                if (k) chunk += ',';
-                chunk += formatNumber(args[k]);
-            }
-            chunk += ')';
-        }
+        appendModuleText(chunk, table, symbols_[i], params(i));
         if (chunk.size() > (1 << 16) - 256) {
             os.write(chunk.data(), static_cast<std::streamsize>(chunk.size()));
             chunk.clear();
@@ -195,6 +186,18 @@ std::vector<std::uint64_t> countSymbols(const ModuleString& s, std::size_t symbo
     for (const auto& t : tallies)
         for (std::size_t k = 0; k < 4 * symbolCount; ++k) counts[k % symbolCount] += t[k];
     return counts;
+}
+
+void appendModuleText(std::string& out, const SymbolTable& table, Symbol symbol,
+                      std::span<const double> params) {
+    out += table.name(symbol);
+    if (params.empty()) return;
+    out += '(';
+    for (std::size_t k = 0; k < params.size(); ++k) {
+        if (k) out += ',';
+        out += formatNumber(params[k]);
+    }
+    out += ')';
 }
 
 }  // namespace graftal

@@ -14,13 +14,18 @@ inline std::uint64_t mix64(std::uint64_t z) {
     return z ^ (z >> 31);
 }
 
+// The top 53 bits of `h` as a double in [0, 1).
+inline double unitDouble(std::uint64_t h) {
+    return static_cast<double>(h >> 11) * 0x1.0p-53;
+}
+
 inline double uniformAt(std::uint64_t seed, std::uint64_t step, std::uint64_t position,
                         std::uint64_t draw) {
     std::uint64_t h = mix64(seed + 0x9e3779b97f4a7c15ULL);
     h = mix64(h ^ (step * 0xd1b54a32d192ed03ULL));
     h = mix64(h ^ position);
     h = mix64(h ^ (draw * 0x8cb92ba72f3d8dd7ULL));
-    return static_cast<double>(h >> 11) * 0x1.0p-53;
+    return unitDouble(h);
 }
 
 }  // namespace graftal

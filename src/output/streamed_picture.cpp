@@ -1,0 +1,65 @@
+// The streamed PNG: the turtle walks a streamed derivation (or its subtree summaries)
+// twice, once to measure the picture and once to draw it into a StreamedPng.
+#include "graftal/streamed_picture.hpp"
+
+#include <algorithm>
+
+#include "graftal/streamed_interpretation.hpp"
+#include "summarised_png.hpp"
+
+namespace graftal {
+
+namespace {
+
+// Past this many segments a picture has far more strokes than pixels; subtrees smaller
+// than a pixel are then drawn as one stroke each (subtree_summaries.hpp). Below it the
+// picture is stroke for stroke the one the materialised path draws.
+constexpr double kSummariseAbove = 2e7;
+
+// What the turtle draws goes straight into the picture.
+class PngDrawing : public StreamedDrawing {
+  public:
+    explicit PngDrawing(StreamedPng& png) : png_(png) {}
+    void segment(const Segment& s) override { png_.segment(s); }
+    void polygon(std::span<const Vec3> v, std::uint16_t c) override { png_.polygon(v, c); }
+
+  private:
+    StreamedPng& png_;
+};
+
+}  // namespace
+
+bool streamedPictureIsSummarised(const Model& model, int steps, std::size_t memoryLimit) {
+    SubtreeSummaries sums(model, steps, memoryLimit);
+    return sums.available() && sums.segments() > kSummariseAbove;
+}
+
+void renderStreamedPng(const Model& model, int steps, const DerivationOptions& options,
+                       const RenderOptions& render, const std::filesystem::path& path) {
+    if (SubtreeSummaries sums(model, steps, options.memoryLimit);
+        sums.available() && sums.segments() > kSummariseAbove) {
+        renderSummarisedPng(model, sums, render, path);
+        return;
+    }
+    StreamedMeasure m = measureStreamed(model, steps, options, true);
+    StreamedPng png(render, m.bounds, m.ink, m.segments > 0, m.baseWidth, Scene::defaultPalette(),
+                    path);
+    PngDrawing drawing(png);
+    drawStreamed(model, steps, options, drawing);
+    png.finish();
+}
+
+void renderSummarisedPng(const Model& model, const SubtreeSummaries& sums,
+                         const RenderOptions& render, const std::filesystem::path& path,
+                         double dotRadius, double pixelTolerance) {
+    StreamedMeasure measure =
+        measureSummarised(model, sums, std::max(render.width, render.height), pixelTolerance);
+    StreamedPng png(render, measure.bounds, measure.ink, measure.segments > 0, measure.baseWidth,
+                    Scene::defaultPalette(), path);
+    const ImageTransform transform = ImageTransform::fit(measure.bounds, render);
+    PngDrawing drawing(png);
+    drawSummarised(model, sums, transform.scale, dotRadius, drawing);
+    png.finish();
+}
+
+}  // namespace graftal
