@@ -61,12 +61,13 @@ TEST(Turtle3D, PitchDownTurnsHeadingAwayFromUp) {
     expectVec(frameAfter("^").h, {0, 0, 1});
 }
 
-TEST(Turtle3D, RollLeftLowersTheLeftSide) {
-    Frame f = frameAfter("\\");
+// The rolls are cpfg's: / turns L toward -U (into the screen at the start), \ toward U.
+TEST(Turtle3D, RollsTurnTheLeftVectorAsCpfgDoes) {
+    Frame f = frameAfter("/");
     expectVec(f.h, {0, 1, 0});
     expectVec(f.l, {0, 0, -1});
     expectVec(f.u, {-1, 0, 0});
-    expectVec(frameAfter("/").l, {0, 0, 1});
+    expectVec(frameAfter("\\").l, {0, 0, 1});
 }
 
 TEST(Turtle3D, TurnAroundAndExplicitAngles) {
@@ -78,12 +79,12 @@ TEST(Turtle3D, TurnAroundAndExplicitAngles) {
 }
 
 TEST(Turtle3D, RollToVerticalMakesLeftHorizontal) {
-    Frame f = frameAfter("&(30)/(40)$", 90);
+    Frame f = frameAfter("&(30)/(40)@v", 90);
     EXPECT_NEAR(f.l.y, 0, 1e-12) << "L horizontal";
     EXPECT_NEAR(dot(f.h, f.l), 0, 1e-12);
     expectVec(cross(f.h, f.l), f.u);
     Frame before = frameAfter("&(30)/(40)", 90);
-    expectVec(f.h, before.h);  // $ only rolls
+    expectVec(f.h, before.h);  // @v only rolls
 }
 
 TEST(Turtle3D, FrameStaysOrthonormalAfterAMillionRotations) {
@@ -166,7 +167,8 @@ TEST(Turtle3D, PolygonVerticesAndGMoves) {
 }
 
 TEST(Turtle3D, SurfacesArePlacedAtTheTurtleFrame) {
-    LSystem ls = parse("Lsystem: 1\naxiom: F~leaf&F~leaf(2)~petal\nendlsystem\n");
+    LSystem ls =
+        parse("Lsystem: 1\nangle increment: 90\naxiom: F~leaf&F~leaf(2)~petal\nendlsystem\n");
     Scene s = interpret(ls, derive(ls, 0));
     ASSERT_EQ(s.surfaces.size(), 3u);
     ASSERT_EQ(s.surfaceNames.size(), 2u);

@@ -115,6 +115,9 @@ LSystem Parser::run() {
     for (const auto& [k, v] : options_.defines) ls_.defines[k] = v;
     ls_.legacyPfg = !sawLsystemHeader_;
     ls_.view.clockwisePlus = ls_.legacyPfg;
+    // cpfg's angle increment is 45 degrees until a file says otherwise; pfg data files keep
+    // the 90 degrees they have always had here.
+    if (!ls_.legacyPfg) ls_.view.angleDegrees = 45;
     for (const auto& line : src_.lines) {
         parseLine(line);
         if (errorCount() >= kMaxErrors) {

@@ -90,6 +90,7 @@ class Parser {
                             const std::vector<ModulePattern>& b);
 
     void warnShadowedProductions();
+    void warnSubLsystemEnds();
 
     static constexpr std::size_t kMaxErrors = 20;
     std::size_t errorCount() const;

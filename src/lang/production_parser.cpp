@@ -221,6 +221,7 @@ void Parser::finish() {
     }
     resolveSchedule();
     warnShadowedProductions();
+    if (!ls_.legacyPfg) warnSubLsystemEnds();
     for (const auto& d : diags_.items())
         if (d.severity == Severity::Warning) ls_.warnings.push_back(d);
 }
@@ -230,6 +231,27 @@ bool Parser::samePattern(const std::vector<ModulePattern>& a, const std::vector<
     for (std::size_t i = 0; i < a.size(); ++i)
         if (a[i].symbol != b[i].symbol || a[i].formals.size() != b[i].formals.size()) return false;
     return true;
+}
+
+// cpfg ends a sub-L-system at '$' and ignores an unmatched one with a warning. graftal has
+// no sub-L-systems, so every '$' is such a one: say so once, where it first appears.
+void Parser::warnSubLsystemEnds() {
+    const Symbol dollar = '$';
+    auto has = [&](const std::vector<SuccessorModule>& ms) {
+        return std::any_of(ms.begin(), ms.end(),
+                           [&](const SuccessorModule& m) { return m.symbol == dollar; });
+    };
+    std::optional<SourceLocation> where;
+    const auto axiom = ls_.axiom.symbols();
+    if (std::find(axiom.begin(), axiom.end(), dollar) != axiom.end())
+        where = src_.at(axiomLine_, 1);
+    for (const auto* list : {&ls_.productions, &ls_.decomposition, &ls_.homomorphism})
+        for (const Production& p : *list)
+            if (!where && has(p.successor)) where = p.location;
+    if (where)
+        diags_.warning(*where,
+                       "'$' ends a sub-L-system in cpfg; there is none here, so the turtle "
+                       "ignores it (cpfg: \"unmatched $ ignored\")");
 }
 
 // First applicable production wins; a context-free, unconditional production listed

@@ -125,6 +125,7 @@ SubtreeMotion SubtreeSummaries::leaf(Symbol symbol) const {
     TurtleOp op = symbol < kFirstDeclaredSymbol ? turtle::opFor(symbol) : TurtleOp::None;
     if (symbol >= kFirstDeclaredSymbol && ls_.symbols.name(symbol).starts_with("~"))
         op = TurtleOp::Surface;
+    if (symbol == '$' && ls_.legacyPfg) op = TurtleOp::RollToVertical;  // as opTable()
     switch (op) {
         case TurtleOp::None:
             break;
