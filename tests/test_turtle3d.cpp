@@ -24,7 +24,8 @@ Frame frameAfter(const std::string& modules, double angle = 90) {
         return Vec3{p[0], p[1], p[2]};
     };
     std::size_t n = s.size();
-    return {v(n - 3), v(n - 2), v(n - 1)};
+    // ?U reports cpfg's up vector, -U.
+    return {v(n - 3), v(n - 2), v(n - 1) * -1.0};
 }
 
 void expectVec(const Vec3& a, const Vec3& b, double tol = 1e-12) {
@@ -99,7 +100,7 @@ TEST(Turtle3D, FrameStaysOrthonormalAfterAMillionRotations) {
         auto p = s.params(i);
         return Vec3{p[0], p[1], p[2]};
     };
-    Vec3 h = v(n - 3), l = v(n - 2), u = v(n - 1);
+    Vec3 h = v(n - 3), l = v(n - 2), u = v(n - 1) * -1.0;  // ?U is cpfg's up, -U
     EXPECT_NEAR(dot(h, h), 1, 1e-9);
     EXPECT_NEAR(dot(l, l), 1, 1e-9);
     EXPECT_NEAR(dot(u, u), 1, 1e-9);

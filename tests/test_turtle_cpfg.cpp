@@ -218,6 +218,22 @@ TEST(TurtleCpfg, BoxesOfDrawnCasesAreCpfgs) {
     }
 }
 
+// p11_query: cpfg's up vector starts at (0,0,-1), and L = H x U.
+TEST(TurtleCpfg, QueryUpIsCpfgsUpVector) {
+    LSystem ls = parse(
+        "Lsystem: 1\naxiom: ?U(0,0,0) +(90) F &(90) ?U(0,0,0) ?L(0,0,0) ?H(0,0,0)\n"
+        "endlsystem\n");
+    ModuleString m = derive(ls, 0);
+    auto at = [&](std::size_t i) {
+        auto p = m.params(i);
+        return Vec3{p[0], p[1], p[2]};
+    };
+    expectNear(at(0), {0, 0, -1}, "start");
+    expectNear(at(4), {1, 0, 0}, "?U after +(90) &(90), as cpfg prints it");
+    expectNear(at(5), {0, -1, 0}, "?L");
+    expectNear(cross(at(6), at(4)), at(5), "L = H x U");
+}
+
 TEST(TurtleCpfg, DefaultAngleIs45DegreesAndPfgFilesKeep90) {
     EXPECT_EQ(parse("Lsystem: 1\naxiom: F\nendlsystem\n").view.angleDegrees, 45);
     EXPECT_EQ(parse("Lsystem: 1\nangle increment: 30\naxiom: F\nendlsystem\n").view.angleDegrees,
