@@ -1,10 +1,12 @@
 // The 3D turtle against cpfg 6.6: end points of every segment and the boxes cpfg wrote
 // for the turtle cases of the cpfg oracle pack (t09_*, v10_circles), with the view
 // settings of their view files written into the .l text.
+#include <cairo.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -317,6 +319,25 @@ TEST(TurtleCpfg, APatternOfCirclesIsDrawn) {
          at = text.find("<path fill=", at + 1))
         ++fills;
     EXPECT_EQ(fills, 40u);
+
+    // The PNG has ink: every circle is a filled disc of about 1/16 of the picture's width.
+    auto png = std::filesystem::temp_directory_path() / "graftal-test-circles.png";
+    RenderOptions o;
+    o.width = o.height = 200;
+    writePng(art, o, png);
+    cairo_surface_t* image = cairo_image_surface_create_from_png(png.c_str());
+    ASSERT_EQ(cairo_surface_status(image), CAIRO_STATUS_SUCCESS);
+    const unsigned char* data = cairo_image_surface_get_data(image);
+    const int stride = cairo_image_surface_get_stride(image);
+    int inked = 0;
+    for (int y = 0; y < 200; ++y)
+        for (int x = 0; x < 200; ++x) {
+            const unsigned char* px = data + y * stride + 4 * x;  // B, G, R, A
+            if (px[0] < 128 && px[1] < 128 && px[2] < 128) ++inked;
+        }
+    cairo_surface_destroy(image);
+    std::filesystem::remove(png);
+    EXPECT_GT(inked, 200 * 200 / 10) << "the circles cover a good part of the picture";
 
     // In 3D a sphere is a closed ball in the mesh.
     Scene ball = cpfgScene("@O(2)", "");
