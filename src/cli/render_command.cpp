@@ -148,7 +148,7 @@ int runRender(const InputOptions& in, const RenderCommandOptions& out) {
     }
 
     if (*kind == OutputKind::Picture && scene.segments.empty() && scene.polygonCount() == 0 &&
-        scene.surfaces.empty()) {
+        scene.surfaces.empty() && scene.discs.empty() && scene.spheres.empty()) {
         // No turtle meaning (Anabaena's cells, the Fibonacci words): the derivation is
         // the picture the book draws for such systems.
         note(in, "the string draws nothing; drawing its derivation instead");
