@@ -1,6 +1,8 @@
 // The command-line contract: what other tools and users rely on.
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 
 #include "process.hpp"
@@ -147,4 +149,36 @@ TEST(Cli, EachWarningPrintsOnceForDeriveRenderAndStats) {
         EXPECT_EQ(r.status, 0) << r.err;
         EXPECT_EQ(count(r.err, "w.l:4:1: warning:"), 1) << r.err;
     }
+}
+
+// cpfg writes a side thinner than 1e-5 as max = min + 1e-5 (t09_slash: box 0 0 0 1e-05 2 1e-05).
+TEST(Cli, StatsBoxGivesFlatSidesCpfgsThickness) {
+    TempDir t;
+    auto f = t.write("slash.l", "Lsystem: 1\nangle increment: 30\naxiom: F/F\nendlsystem\n");
+    auto r = runGraftal("stats " + f.string());
+    ASSERT_EQ(r.status, 0) << r.err;
+    auto j = nlohmann::json::parse(r.out);
+    const double want[2][3] = {{0, 0, 0}, {1e-5, 2, 1e-5}};
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(j["bbox"]["min"][c].get<double>(), want[0][c], 1e-12) << c;
+        EXPECT_NEAR(j["bbox"]["max"][c].get<double>(), want[1][c], 1e-12) << c;
+    }
+}
+
+// A phyllotaxis pattern made only of @c circles is a picture, not a blank page.
+TEST(Cli, CirclesAloneRenderAsAPicture) {
+    TempDir t;
+    auto f = t.write("phyllo.l",
+                     "Lsystem: 1\nderivation length: 30\naxiom: A(0)\n"
+                     "A(n) --> [+(n*137.5)f(0.5*sqrt(n))@c(0.6)]A(n+1)\nendlsystem\n");
+    auto svg = t.path() / "phyllo.svg";
+    auto r = runGraftal("render " + f.string() + " -o " + svg.string());
+    ASSERT_EQ(r.status, 0) << r.err;
+    std::ifstream in(svg);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::size_t fills = 0;
+    for (auto at = text.find("<path fill="); at != std::string::npos;
+         at = text.find("<path fill=", at + 1))
+        ++fills;
+    EXPECT_EQ(fills, 30u) << "one filled circle per @c";
 }

@@ -26,7 +26,8 @@ Frame frameAfter(const std::string& modules, double angle = 90) {
         return Vec3{p[0], p[1], p[2]};
     };
     std::size_t n = s.size();
-    return {v(n - 3), v(n - 2), v(n - 1)};
+    // ?U reports cpfg's up vector, -U.
+    return {v(n - 3), v(n - 2), v(n - 1) * -1.0};
 }
 
 void expectVec(const Vec3& a, const Vec3& b, double tol = 1e-12) {
@@ -63,12 +64,13 @@ TEST(Turtle3D, PitchDownTurnsHeadingAwayFromUp) {
     expectVec(frameAfter("^").h, {0, 0, 1});
 }
 
-TEST(Turtle3D, RollLeftLowersTheLeftSide) {
-    Frame f = frameAfter("\\");
+// The rolls are cpfg's: / turns L toward -U (into the screen at the start), \ toward U.
+TEST(Turtle3D, RollsTurnTheLeftVectorAsCpfgDoes) {
+    Frame f = frameAfter("/");
     expectVec(f.h, {0, 1, 0});
     expectVec(f.l, {0, 0, -1});
     expectVec(f.u, {-1, 0, 0});
-    expectVec(frameAfter("/").l, {0, 0, 1});
+    expectVec(frameAfter("\\").l, {0, 0, 1});
 }
 
 TEST(Turtle3D, TurnAroundAndExplicitAngles) {
@@ -80,12 +82,12 @@ TEST(Turtle3D, TurnAroundAndExplicitAngles) {
 }
 
 TEST(Turtle3D, RollToVerticalMakesLeftHorizontal) {
-    Frame f = frameAfter("&(30)/(40)$", 90);
+    Frame f = frameAfter("&(30)/(40)@v", 90);
     EXPECT_NEAR(f.l.y, 0, 1e-12) << "L horizontal";
     EXPECT_NEAR(dot(f.h, f.l), 0, 1e-12);
     expectVec(cross(f.h, f.l), f.u);
     Frame before = frameAfter("&(30)/(40)", 90);
-    expectVec(f.h, before.h);  // $ only rolls
+    expectVec(f.h, before.h);  // @v only rolls
 }
 
 TEST(Turtle3D, FrameStaysOrthonormalAfterAMillionRotations) {
@@ -100,7 +102,7 @@ TEST(Turtle3D, FrameStaysOrthonormalAfterAMillionRotations) {
         auto p = s.params(i);
         return Vec3{p[0], p[1], p[2]};
     };
-    Vec3 h = v(n - 3), l = v(n - 2), u = v(n - 1);
+    Vec3 h = v(n - 3), l = v(n - 2), u = v(n - 1) * -1.0;  // ?U is cpfg's up, -U
     EXPECT_NEAR(dot(h, h), 1, 1e-9);
     EXPECT_NEAR(dot(l, l), 1, 1e-9);
     EXPECT_NEAR(dot(u, u), 1, 1e-9);
@@ -168,7 +170,8 @@ TEST(Turtle3D, PolygonVerticesAndGMoves) {
 }
 
 TEST(Turtle3D, SurfacesArePlacedAtTheTurtleFrame) {
-    Model ls = parseModel("Lsystem: 1\naxiom: F~leaf&F~leaf(2)~petal\nendlsystem\n");
+    Model ls =
+        parseModel("Lsystem: 1\nangle increment: 90\naxiom: F~leaf&F~leaf(2)~petal\nendlsystem\n");
     Scene s = interpret(ls, deriveWithQueries(ls, 0));
     ASSERT_EQ(s.surfaces.size(), 3u);
     ASSERT_EQ(s.surfaceNames.size(), 2u);

@@ -107,6 +107,8 @@ class ModelBuilder : public ParserTarget {
 
   private:
     void warnShadowedProductions();
+    void warnSubLsystemEnds();
+    SourceLocation axiomLocation_;
 
     DiagnosticList& diags_;
     Model model_;

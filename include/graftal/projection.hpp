@@ -14,7 +14,8 @@ enum class ViewDirection { Front, Back, Side, Top };
 // y up), "top" (looking down -y: x right, -z up); nullopt for anything else.
 std::optional<ViewDirection> viewDirectionFromName(const std::string& name);
 
-// The scene with every point mapped to (right, up, 0) of the view.
+// The scene with every point mapped to (right, up, 0) of the view; discs and spheres
+// become filled polygons (their outlines as seen), which is how line art draws them.
 Scene projectScene(const Scene& scene, ViewDirection view);
 
 }  // namespace graftal

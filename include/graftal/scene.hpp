@@ -53,6 +53,21 @@ struct SurfaceInstance {
     std::uint16_t color = 0;
 };
 
+// A disc (cpfg's @o and @c): a filled circle of `radius` about `centre`, in the plane
+// whose normal is `normal` (unit length).
+struct Disc {
+    Vec3 centre, normal{0, 0, 1};
+    double radius = 0.5;
+    std::uint16_t color = 0;
+};
+
+// A sphere (cpfg's @O).
+struct Sphere {
+    Vec3 centre;
+    double radius = 0.5;
+    std::uint16_t color = 0;
+};
+
 class Scene {
   public:
     std::vector<Segment> segments;
@@ -64,6 +79,9 @@ class Scene {
     // Predefined surfaces placed by `~name`; the names are resolved by a SurfaceLibrary.
     std::vector<SurfaceInstance> surfaces;
     std::vector<std::string> surfaceNames;
+    // Circles and balls the turtle places with @o, @c and @O.
+    std::vector<Disc> discs;
+    std::vector<Sphere> spheres;
     // The width a segment has when the turtle never changed it: what 2D line art scales by.
     float baseWidth = 1;
     // True when anything left the z = 0 plane: 3D outputs and views make sense.
@@ -78,7 +96,8 @@ class Scene {
     void addPolygon(std::span<const Vec3> vertices, std::uint16_t color);
     Rgb colorOf(std::uint16_t index) const;
 
-    // Box of every segment end point and polygon vertex (empty for an empty scene).
+    // Box of every segment end point, polygon vertex, disc and sphere (empty for an empty
+    // scene).
     Bounds bounds() const;
 
     // A summary: counts and bounds (the geometry itself can be huge).
@@ -89,5 +108,12 @@ class Scene {
 };
 
 std::ostream& operator<<(std::ostream& os, const Scene& s);
+
+// The exact boxes of a disc and a sphere (empty when not finite).
+Bounds discBounds(const Disc& d);
+Bounds sphereBounds(const Sphere& s);
+
+// `sides` points around a disc, counter-clockwise seen from the side its normal points to.
+std::vector<Vec3> discOutline(const Disc& d, int sides);
 
 }  // namespace graftal

@@ -35,6 +35,17 @@ nlohmann::ordered_json point(const Vec3& p) {
     return {p.x, p.y, p.z};
 }
 
+// The "bbox" of stats, in cpfg's convention: a dimension thinner than 1e-5 (a flat or
+// straight plant) gets max = min + 1e-5, as cpfg's box line has it. An empty box is the
+// turtle's start.
+nlohmann::ordered_json bboxJson(Bounds b) {
+    if (b.empty()) b.extend(Vec3{});
+    constexpr double kThinnest = 1e-5;
+    for (auto axis : {&Vec3::x, &Vec3::y, &Vec3::z})
+        if (b.max.*axis - b.min.*axis < kThinnest) b.max.*axis = b.min.*axis + kThinnest;
+    return {{"min", point(b.min)}, {"max", point(b.max)}};
+}
+
 }  // namespace
 
 namespace {
@@ -320,9 +331,7 @@ int runStats(const InputOptions& in, bool geometry, bool predict) {
         if (geometry) {
             j["segments"] = m.segments;
             j["polygons"] = m.polygons;
-            Bounds b = m.bounds;
-            if (b.empty()) b.extend(Vec3{});
-            j["bbox"] = {{"min", point(b.min)}, {"max", point(b.max)}};
+            j["bbox"] = bboxJson(m.bounds);
         }
         std::cout << j.dump(2) << '\n';
         return 0;
@@ -348,9 +357,7 @@ int runStats(const InputOptions& in, bool geometry, bool predict) {
     if (m) {
         j["segments"] = m->segments;
         j["polygons"] = m->polygons;
-        Bounds b = m->bounds;
-        if (b.empty()) b.extend(Vec3{});  // nothing drawn: the turtle's start
-        j["bbox"] = {{"min", point(b.min)}, {"max", point(b.max)}};
+        j["bbox"] = bboxJson(m->bounds);
     }
     std::cout << j.dump(2) << '\n';
     return 0;

@@ -134,7 +134,7 @@ int runRender(const InputOptions& in, const RenderCommandOptions& out) {
     }
 
     if (picture && scene.segments.empty() && scene.polygonCount() == 0 &&
-        scene.surfaces.empty()) {
+        scene.surfaces.empty() && scene.discs.empty() && scene.spheres.empty()) {
         // No turtle meaning (Anabaena's cells, the Fibonacci words): the derivation is
         // the picture the book draws for such systems.
         note(in, "the string draws nothing; drawing its derivation instead");
@@ -144,8 +144,10 @@ int runRender(const InputOptions& in, const RenderCommandOptions& out) {
 
     bool threeD = scene.is3D && !view;
     if (picture && !(threeD && *format == FileFormat::Png)) {
-        // Line art: 2D scenes as they are, 3D scenes seen from the front unless told.
-        if (scene.is3D) scene = projectScene(scene, view.value_or(ViewDirection::Front));
+        // Line art: 2D scenes as they are, 3D scenes seen from the front unless told; discs
+        // and spheres are drawn as their projected outlines.
+        if (scene.is3D || !scene.discs.empty() || !scene.spheres.empty())
+            scene = projectScene(scene, view.value_or(ViewDirection::Front));
         RenderOptions render = out.render;
         // pfg's scale factor: the picture fills that share of the frame (100 = all of it).
         double fill = std::clamp(d.model.view.scaleFactor / 100.0, 0.01, 1.0);

@@ -1,5 +1,6 @@
 // The triangle mesh of a scene: tubes for the segments (tube_mesher), triangles for the
-// polygons (polygon_triangulation) and tessellated patches for the placed surfaces.
+// polygons (polygon_triangulation), discs and spheres (round_shapes) and tessellated
+// patches for the placed surfaces.
 //
 // Conventions every writer and the ray tracer rely on: triangles are counter-clockwise
 // seen from the side their vertex normals point to. Tubes are closed. Polygons and surface
@@ -19,6 +20,7 @@
 #include "graftal/surface.hpp"
 #include "graftal/vec3.hpp"
 #include "polygon_triangulation.hpp"
+#include "round_shapes.hpp"
 #include "tube_mesher.hpp"
 
 namespace graftal {
@@ -271,6 +273,10 @@ Mesh buildMesh(const Scene& scene, const MeshOptions& options, const SurfaceLibr
         const std::uint32_t begin = scene.polygonStart[k], end = scene.polygonStart[k + 1];
         if (end > begin + 2) triangles += end - begin - 2;
     }
+    // Discs and spheres: round enough at twice the sides of a stem.
+    const int roundSides = std::max(16, 2 * options.tubeSides);
+    vertices += meshing::roundShapeVertices(scene, roundSides);
+    triangles += meshing::roundShapeTriangles(scene, roundSides);
     const std::size_t grid = static_cast<std::size_t>(options.surfaceDivisions);
     for (const SurfaceInstance& instance : scene.surfaces) {
         const std::size_t patches = resolved[instance.surface]->patches.size();
@@ -290,6 +296,7 @@ Mesh buildMesh(const Scene& scene, const MeshOptions& options, const SurfaceLibr
     mesh.triangleColor.reserve(triangles);
     tubes.append(mesh);
     appendPolygons(scene, mesh);
+    meshing::appendRoundShapes(scene, roundSides, mesh);
     appendSurfaces(scene, resolved, options.surfaceDivisions, mesh);
     return mesh;
 }

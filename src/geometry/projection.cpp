@@ -32,6 +32,20 @@ Scene projectScene(const Scene& scene, ViewDirection view) {
     }
     for (auto& p : out.polygonVertices) p = project(p, view);
     for (auto& s : out.surfaces) s.origin = project(s.origin, view);
+    // Line art fills outlines: a disc becomes its projected outline (an ellipse unless it
+    // faces the viewer), a sphere the circle it looks like from any side.
+    constexpr int kSides = 48;
+    for (const Disc& d : scene.discs) {
+        std::vector<Vec3> outline = discOutline(d, kSides);
+        for (Vec3& p : outline) p = project(p, view);
+        out.addPolygon(outline, d.color);
+    }
+    for (const Sphere& s : scene.spheres)
+        out.addPolygon(
+            discOutline(Disc{project(s.centre, view), {0, 0, 1}, s.radius, s.color}, kSides),
+            s.color);
+    out.discs.clear();
+    out.spheres.clear();
     out.is3D = false;
     return out;
 }

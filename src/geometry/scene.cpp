@@ -52,6 +52,26 @@ Rgb Scene::colorOf(std::uint16_t index) const {
     return palette[index % palette.size()];
 }
 
+Bounds discBounds(const Disc& d) {
+    // A circle of radius r with unit normal n reaches r·sqrt(1 - n_i²) along axis i.
+    Bounds b;
+    if (!isFinite(d.centre) || !std::isfinite(d.radius)) return b;
+    auto reach = [&](double n) { return d.radius * std::sqrt(std::max(0.0, 1 - n * n)); };
+    Vec3 r{reach(d.normal.x), reach(d.normal.y), reach(d.normal.z)};
+    b.extend(d.centre - r);
+    b.extend(d.centre + r);
+    return b;
+}
+
+Bounds sphereBounds(const Sphere& s) {
+    Bounds b;
+    if (!isFinite(s.centre) || !std::isfinite(s.radius)) return b;
+    Vec3 r{s.radius, s.radius, s.radius};
+    b.extend(s.centre - r);
+    b.extend(s.centre + r);
+    return b;
+}
+
 Bounds Scene::bounds() const {
     // Non-finite points (a turtle fed an infinite step, say) are left out: one of them would
     // make the box infinite and every writer would then fit the whole picture into a point.
@@ -62,13 +82,19 @@ Bounds Scene::bounds() const {
     }
     for (const Vec3& v : polygonVertices)
         if (isFinite(v)) b.extend(v);
+    for (const Disc& d : discs) b.extend(discBounds(d));
+    for (const Sphere& s : spheres) b.extend(sphereBounds(s));
     return b;
 }
 
 void Scene::print(std::ostream& os) const {
     const std::size_t polygons = polygonCount();
     os << "scene: " << segments.size() << (segments.size() == 1 ? " segment, " : " segments, ")
-       << polygons << (polygons == 1 ? " polygon" : " polygons") << ", bounds " << bounds();
+       << polygons << (polygons == 1 ? " polygon" : " polygons");
+    if (!discs.empty()) os << ", " << discs.size() << (discs.size() == 1 ? " disc" : " discs");
+    if (!spheres.empty())
+        os << ", " << spheres.size() << (spheres.size() == 1 ? " sphere" : " spheres");
+    os << ", bounds " << bounds();
 }
 
 std::ostream& operator<<(std::ostream& os, const Scene& s) {

@@ -1,5 +1,6 @@
 // The standard ParserTarget: the calls of a front end become a Model.
 #include <algorithm>
+#include <optional>
 
 #include "graftal/parser_target.hpp"
 
@@ -10,6 +11,9 @@ void ModelBuilder::beginSource(const std::string& file, bool legacyPfg) {
     model_.lsystem.file = file;
     model_.lsystem.legacyPfg = legacyPfg;
     model_.view.clockwisePlus = legacyPfg;  // pfg's + turns right on screen
+    // cpfg's angle increment is 45 degrees until a file says otherwise; pfg data files keep
+    // the 90 degrees they have always had here.
+    if (!legacyPfg) model_.view.angleDegrees = 45;
 }
 
 void ModelBuilder::name(const std::string& name, const SourceLocation&) {
@@ -25,8 +29,9 @@ Symbol ModelBuilder::declareModule(std::string_view name, const SourceLocation&)
     return model_.lsystem.symbols.declare(name);
 }
 
-void ModelBuilder::axiom(ModuleString axiom, const SourceLocation&) {
+void ModelBuilder::axiom(ModuleString axiom, const SourceLocation& location) {
     model_.lsystem.axiom = std::move(axiom);
+    axiomLocation_ = location;
 }
 
 void ModelBuilder::production(ProductionGroup group, Production production) {
@@ -79,6 +84,7 @@ void ModelBuilder::viewSetting(const ViewSetting& setting) {
 
 void ModelBuilder::endOfInput(const SourceLocation&) {
     warnShadowedProductions();
+    if (!model_.lsystem.legacyPfg) warnSubLsystemEnds();
 }
 
 namespace {
@@ -111,6 +117,27 @@ void ModelBuilder::warnShadowedProductions() {
             break;
         }
     }
+}
+
+// cpfg ends a sub-L-system at '$' and ignores an unmatched one with a warning. graftal has
+// no sub-L-systems, so every '$' is such a one: say so once, where it first appears.
+void ModelBuilder::warnSubLsystemEnds() {
+    const LSystem& ls = model_.lsystem;
+    const Symbol dollar = '$';
+    auto has = [&](const std::vector<SuccessorModule>& ms) {
+        return std::any_of(ms.begin(), ms.end(),
+                           [&](const SuccessorModule& m) { return m.symbol == dollar; });
+    };
+    std::optional<SourceLocation> where;
+    const auto axiom = ls.axiom.symbols();
+    if (std::find(axiom.begin(), axiom.end(), dollar) != axiom.end()) where = axiomLocation_;
+    for (const auto* list : {&ls.productions, &ls.decomposition, &ls.homomorphism})
+        for (const Production& p : *list)
+            if (!where && has(p.successor)) where = p.location;
+    if (where)
+        diags_.warning(*where,
+                       "'$' ends a sub-L-system in cpfg; there is none here, so the turtle "
+                       "ignores it (cpfg: \"unmatched $ ignored\")");
 }
 
 }  // namespace graftal

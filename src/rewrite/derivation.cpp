@@ -140,6 +140,7 @@ void Derivation::answerQueries(int stepNumber) {
         std::span<double> p;
         if (!starts.empty()) p = {params.data() + starts[i], starts[i + 1] - starts[i]};
         const Vec3* v = nullptr;
+        const Vec3 cpfgUp = f.up * -1.0;  // cpfg's up vector is -U (its L = H x U)
         switch (s.symbol(i)) {
             case kQueryP:
                 v = &f.position;
@@ -151,7 +152,7 @@ void Derivation::answerQueries(int stepNumber) {
                 v = &f.left;
                 break;
             case kQueryU:
-                v = &f.up;
+                v = &cpfgUp;
                 break;
             default:
                 requests.push_back({i, f, p});

@@ -24,6 +24,7 @@ bool leavesPlane(TurtleOp op) {
         case TurtleOp::RollLeft:
         case TurtleOp::RollRight:
         case TurtleOp::RollToVertical:
+        case TurtleOp::AtPrefix:  // @R, @M, @c, @O may leave it; the generic turtle knows
         case TurtleOp::Surface:
             return true;
         default:
@@ -381,6 +382,7 @@ bool PlanarWalk::slowModule(TurtleOp op, std::span<const double> args) {
         case TurtleOp::RollLeft:
         case TurtleOp::RollRight:
         case TurtleOp::RollToVertical:
+        case TurtleOp::AtPrefix:
         case TurtleOp::Surface:
             return false;
     }

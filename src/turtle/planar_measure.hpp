@@ -21,7 +21,7 @@
 
 namespace graftal::turtle {
 
-// True when nothing the L-system derives turns the turtle out of the plane: no & ^ \ / $
+// True when nothing the L-system derives turns the turtle out of the plane: no & ^ \ / @
 // and no ~surface in the axiom or any successor, and no tropism.
 bool staysPlanar(const Model& model);
 

@@ -32,10 +32,15 @@ class MeasureSink {
         ++m_.polygons;
     }
     void surface(const std::string&, const SurfaceInstance&) {}
+    void disc(const Disc& d) { extend(discBounds(d)); }
+    void sphere(const Sphere& s) { extend(sphereBounds(s)); }
     void baseWidth(float w) { m_.baseWidth = w; }
     void finish(bool is3D) { m_.is3D = is3D; }
 
   private:
+    void extend(const Bounds& b) {
+        if (!b.empty()) m_.bounds.extend(b);
+    }
     // Bounds::extend(), inline: it runs for every segment.
     void extend(const Vec3& p) {
         Bounds& b = m_.bounds;
@@ -58,10 +63,16 @@ class DrawingSink {
     }
     void polygon(std::span<const Vec3> v, std::uint16_t c) { drawing_.polygon(v, c); }
     void surface(const std::string&, const SurfaceInstance&) {}
+    // Seen from the front, as projectScene() draws them.
+    void disc(const Disc& d) { drawing_.polygon(discOutline(d, kSides), d.color); }
+    void sphere(const Sphere& s) {
+        drawing_.polygon(discOutline(Disc{s.centre, {0, 0, 1}, s.radius, s.color}, kSides), s.color);
+    }
     void baseWidth(float) {}
     void finish(bool) {}
 
   private:
+    static constexpr int kSides = 48;
     StreamedDrawing& drawing_;
 };
 

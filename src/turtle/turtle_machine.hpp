@@ -5,8 +5,10 @@
 //
 // Orientation is the frame H, L, U (heading, left, up; H x L = U). Each rotation turns one
 // vector of the frame toward another, which is how LSFP ch. 2 describes them: + turns H
-// toward L (left), & pitches H toward -U (down), \ rolls L toward -U (left). The book's
-// printed matrices R_U, R_L, R_H are applied as [H L U] R^T, which gives exactly these.
+// toward L (left), & pitches H toward -U (down). The rolls follow cpfg: / turns L toward
+// -U and \ toward U (cpfg calls -U its up vector, so / rolls L toward cpfg's up); pfg data
+// files keep the book's names, \ rolling L toward -U. The book's printed matrices R_U,
+// R_L, R_H are applied as [H L U] R^T.
 #pragma once
 
 #include <algorithm>
@@ -39,6 +41,7 @@ enum class TurtleOp : std::uint8_t {
     RollRight,
     TurnAround,
     RollToVertical,
+    AtPrefix,  // @: the next module is an @-command (@v, @M, @R, @o, @c, @O, ...)
     Push,
     Pop,
     PolygonBegin,
@@ -81,8 +84,10 @@ inline TurtleOp opFor(Symbol s) {
             return TurtleOp::RollRight;
         case '|':
             return TurtleOp::TurnAround;
-        case '$':
-            return TurtleOp::RollToVertical;
+        // '$' ends a sub-L-system in cpfg, which graftal does not have: not a turtle symbol
+        // (pfg data files keep the book's $, see opTable()).
+        case '@':
+            return TurtleOp::AtPrefix;
         case '[':
             return TurtleOp::Push;
         case ']':
@@ -105,17 +110,19 @@ inline TurtleOp opFor(Symbol s) {
     }
 }
 
-// The operation of every symbol id: opFor() for characters, Surface for declared ~names.
 // What symbol `s` of `ls` does to the turtle: the one place that says it. The three walks
 // (this machine, the planar walk of planar_measure.cpp and the subtree summaries) all
 // switch on these operations; the planar walk keeps a switch of its own rather than
 // calling into the machine, because a call in its loop would make it slower (see there).
+// Characters get opFor(), declared ~names are surfaces, and in a pfg data file the book's
+// $ rolls until L is horizontal.
 inline TurtleOp opOf(const LSystem& ls, Symbol s) {
     if (s >= ls.symbols.size()) return TurtleOp::None;
     if (s >= kFirstDeclaredSymbol) {
         const std::string& name = ls.symbols.name(s);
         if (name.size() > 1 && name[0] == '~') return TurtleOp::Surface;
     }
+    if (s == '$' && ls.legacyPfg) return TurtleOp::RollToVertical;
     return opFor(s);
 }
 
@@ -153,6 +160,7 @@ using Visitor = std::function<void(std::size_t, const TurtleFrame&)>;
 //   std::uint32_t segment(const Segment&)   -> the index later segments link to
 //   void polygon(std::span<const Vec3>, std::uint16_t color)
 //   void surface(const std::string& name, const SurfaceInstance&)
+//   void disc(const Disc&), void sphere(const Sphere&)
 //   void baseWidth(float), void finish(bool is3D)
 template <class Sink>
 class TurtleMachine {
@@ -166,6 +174,9 @@ class TurtleMachine {
         deltaCos_ = std::cos(delta);
         deltaSin_ = std::sin(delta);
         turnSign_ = v.clockwisePlus ? -1.0 : 1.0;
+        // cpfg's / rolls L toward -U (its up vector is our -U); pfg data files keep the
+        // book's / (L toward U).
+        rollSign_ = v.clockwisePlus ? 1.0 : -1.0;
         double h = v.initialHeading * kPi / 180.0;
         rotatePair(state_.heading, state_.left, std::cos(h), std::sin(h));
         state_.width = static_cast<float>(v.initialWidth);
@@ -191,6 +202,11 @@ class TurtleMachine {
 
     // One module of a string that arrives piece by piece (streamed derivations).
     void module(Symbol s, std::span<const double> args, std::size_t index) {
+        if (atPending_) {
+            atPending_ = false;
+            atCommand(s, args);
+            return;
+        }
         TurtleOp op = ops_[s];
         if (op != TurtleOp::None) apply(op, args, index, s);
     }
@@ -302,13 +318,16 @@ class TurtleMachine {
                 turn(state_.heading, state_.up, args, 1);
                 break;
             case TurtleOp::RollLeft:
-                turn(state_.left, state_.up, args, -1);
+                turn(state_.left, state_.up, args, -rollSign_);
                 break;
             case TurtleOp::RollRight:
-                turn(state_.left, state_.up, args, 1);
+                turn(state_.left, state_.up, args, rollSign_);
                 break;
             case TurtleOp::RollToVertical:
                 rollToVertical();
+                break;
+            case TurtleOp::AtPrefix:
+                atPending_ = true;
                 break;
             case TurtleOp::Push: {
                 stack_.push_back(state_);
@@ -370,7 +389,8 @@ class TurtleMachine {
         return static_cast<std::uint16_t>(v);
     }
 
-    // ABOP's $: roll about H so that L is horizontal (L = V x H / |V x H|, V = world up).
+    // cpfg's @v (ABOP's $): roll about H so that L is horizontal (L = V x H / |V x H|,
+    // V = world up).
     void rollToVertical() {
         Vec3 v{0, 1, 0};
         Vec3 l = cross(v, state_.heading);
@@ -378,6 +398,81 @@ class TurtleMachine {
         if (n < 1e-12) return;  // heading vertical: any roll is as good
         state_.left = l * (1 / n);
         state_.up = cross(state_.heading, state_.left);
+    }
+
+    // The module after an @, as cpfg reads it. Its plain meaning never applies (@Gs is not
+    // a G step); @-commands graftal does not draw are ignored.
+    void atCommand(Symbol s, std::span<const double> args) {
+        switch (s) {
+            case 'v':
+                rollToVertical();
+                break;
+            case 'M':
+                moveTo(args);
+                break;
+            case 'R':
+                setHeading(args);
+                break;
+            case 'o':
+            case 'c':
+            case 'O': {
+                double d = args.empty() ? state_.width : args[0];
+                if (s == 'O') {
+                    mark3D();
+                    sink_.sphere(Sphere{state_.position, d / 2, state_.color});
+                } else {
+                    // @o faces the viewer (+z); @c lies in the turtle's plane, facing U.
+                    Vec3 normal = s == 'o' ? Vec3{0, 0, 1} : state_.up;
+                    if (s == 'c' && std::fabs(normal.z) < 1 - 1e-9) mark3D();
+                    sink_.disc(Disc{state_.position, normal, d / 2, state_.color});
+                }
+                break;
+            }
+            default:
+                break;
+        }
+    }
+
+    // @M(x, y[, z]): jump to a point without drawing, keeping the frame; z stays as it is
+    // when not given.
+    void moveTo(std::span<const double> args) {
+        if (args.size() < 2) return;
+        state_.position.x = args[0];
+        state_.position.y = args[1];
+        if (args.size() >= 3) state_.position.z = args[2];
+        if (!is3D_ && std::fabs(state_.position.z) > 1e-9) mark3D();
+        state_.lastSegment = kNoSegment;  // a jump starts a new axis
+    }
+
+    // @R(hx, hy, hz): the heading becomes h (normalised) and L and U turn with it by the
+    // rotation that takes the old heading to h (no twist about it). @R(hx, hy, hz, ux, uy,
+    // uz) also sets the up vector, given as cpfg's (our -U), made perpendicular to h.
+    void setHeading(std::span<const double> args) {
+        if (args.size() < 3) return;
+        Vec3 h = normalized(Vec3{args[0], args[1], args[2]});
+        if (length(h) == 0) return;
+        if (args.size() >= 6) {
+            Vec3 cpfgUp{args[3], args[4], args[5]};
+            Vec3 up = normalized((cpfgUp - h * dot(cpfgUp, h)) * -1.0);
+            if (length(up) == 0) return;
+            state_.heading = h;
+            state_.up = up;
+            state_.left = cross(up, h);  // H x L = U
+        } else {
+            Vec3 axis = cross(state_.heading, h);
+            double s = length(axis), c = dot(state_.heading, h);
+            if (s < 1e-12) {
+                if (c < 0) {  // reversed: a half turn about U, as | does
+                    state_.left = state_.left * -1.0;
+                }
+            } else {
+                double angle = std::atan2(s, c);
+                axis = axis * (1 / s);
+                state_.left = normalized(rotateAbout(state_.left, axis, angle));
+            }
+            state_.heading = h;
+            state_.up = cross(state_.heading, state_.left);
+        }
     }
 
     void placeSurface(Symbol symbol, std::span<const double> args) {
@@ -396,11 +491,12 @@ class TurtleMachine {
     const ViewSettings& view_;
     Sink& sink_;
     std::array<TurtleOp, kMaxSymbols> ops_;
-    double deltaCos_ = 1, deltaSin_ = 0, turnSign_ = 1;
+    double deltaCos_ = 1, deltaSin_ = 0, turnSign_ = 1, rollSign_ = -1;
     Vec3 tropism_{0, -1, 0};
     double elasticity_ = 0;
     bool hasTropism_ = false;
     bool is3D_ = false;
+    bool atPending_ = false;  // the last module was an @
     std::uint64_t rotations_ = 0;
     TurtleState state_;
     std::vector<TurtleState> stack_;
@@ -423,6 +519,8 @@ class SceneSink {
         if (it == scene_.surfaceNames.end()) scene_.surfaceNames.push_back(name);
         scene_.surfaces.push_back(s);
     }
+    void disc(const Disc& d) { scene_.discs.push_back(d); }
+    void sphere(const Sphere& s) { scene_.spheres.push_back(s); }
     void baseWidth(float w) { scene_.baseWidth = w; }
     void finish(bool is3D) { scene_.is3D = is3D; }
 
@@ -436,6 +534,8 @@ class NullSink {
     std::uint32_t segment(const Segment&) { return kNoSegment; }
     void polygon(std::span<const Vec3>, std::uint16_t) {}
     void surface(const std::string&, const SurfaceInstance&) {}
+    void disc(const Disc&) {}
+    void sphere(const Sphere&) {}
     void baseWidth(float) {}
     void finish(bool) {}
 };
