@@ -110,11 +110,8 @@ void expectDrawsAndIsSmall(const std::string& file) {
     std::vector<Diagnostic> warnings = parsed.warnings();
     EXPECT_TRUE(warnings.empty()) << warnings.front().toString();
     Model ls = std::move(parsed).orThrow();
-    auto t0 = std::chrono::steady_clock::now();
     ModuleString s = derive(ls);
-    double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    EXPECT_LT(s.size(), 2'000'000u);
-    EXPECT_LT(seconds, 5.0) << "the examples derive in well under a second";
+    EXPECT_LT(s.size(), 2'000'000u) << "small enough to derive in well under a second";
     Scene scene = interpret(ls, applyHomomorphism(ls.lsystem, s));
     EXPECT_GT(scene.segments.size() + scene.polygonCount(), 0u) << "draws a picture";
 }
