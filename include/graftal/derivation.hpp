@@ -8,6 +8,7 @@
 #include <optional>
 #include <vector>
 
+#include "graftal/cancellation.hpp"
 #include "graftal/environment.hpp"
 #include "graftal/lsystem.hpp"
 #include "graftal/model.hpp"
@@ -37,6 +38,9 @@ struct DerivationOptions {
     std::function<void(int step, std::size_t modules)> progress;
     // Fills query modules after every step. Empty: a string with query modules is an error.
     QueryResolver queryResolver;
+    // Raised from another thread to stop: checked before and after every step's rewriting;
+    // a cancelled step throws Cancelled and leaves the current string as it was.
+    CancellationToken cancel;
 };
 
 class Derivation {

@@ -3,6 +3,7 @@
 
 #include "graftal/atomic_file.hpp"
 #include "graftal/bspline.hpp"
+#include "graftal/cancellation.hpp"
 #include "graftal/color_map.hpp"
 #include "graftal/derivation.hpp"
 #include "graftal/derivation_diagram.hpp"
@@ -18,6 +19,7 @@
 #include "graftal/module_string.hpp"
 #include "graftal/output.hpp"
 #include "graftal/parser_target.hpp"
+#include "graftal/pipeline.hpp"
 #include "graftal/projection.hpp"
 #include "graftal/render3d.hpp"
 #include "graftal/rgb.hpp"

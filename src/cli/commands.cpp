@@ -15,6 +15,7 @@
 #include "graftal/growth.hpp"
 #include "graftal/lsystem.hpp"
 #include "graftal/model.hpp"
+#include "graftal/pipeline.hpp"
 #include "graftal/streamed_interpretation.hpp"
 #include "graftal/streaming.hpp"
 #include "graftal/turtle.hpp"
@@ -75,72 +76,41 @@ Loaded loadInput(const InputOptions& in) {
     return l;
 }
 
-DerivationOptions derivationOptions(const InputOptions& in, const Model& model) {
-    DerivationOptions opts;
-    opts.memoryLimit = in.memoryLimit;
-    opts.seed = in.seed;
-    opts.threads = in.threads;
-    opts.queryResolver = turtleQueryResolver(model.view);
+DeriveRequest deriveRequest(const InputOptions& in) {
+    DeriveRequest r;
+    r.steps = in.steps;
+    r.seed = in.seed;
+    r.threads = in.threads;
+    r.memoryLimit = in.memoryLimit;
+    r.stream = in.stream ? StreamPolicy::Always : StreamPolicy::Auto;
+    r.streamLimit = in.streamLimit;
     // Progress for long derivations, only where a person watches (a terminal), and only
     // once a derivation has taken more than a second.
     if (!in.quiet && ::isatty(2)) {
         auto start = std::chrono::steady_clock::now();
-        opts.progress = [start](int step, std::size_t modules) {
+        r.progress = [start](int step, std::size_t modules) {
             if (std::chrono::steady_clock::now() - start < std::chrono::seconds(1)) return;
             std::cerr << "\rgraftal: step " << step << ": " << modules << " modules   "
                       << std::flush;
             progressShown = true;
         };
     }
-    return opts;
+    r.notify = [&in](const Diagnostic& d) {
+        endProgressLine();
+        note(in, d.message);
+    };
+    return r;
+}
+
+DerivationOptions derivationOptions(const InputOptions& in, const Model& model) {
+    return graftal::derivationOptions(model, deriveRequest(in));
 }
 
 bool chooseStreaming(const Loaded& l, const InputOptions& in, bool canStream, bool countGeometry,
                      bool pixelBound) {
-    std::string obstacle = streamingObstacle(l.model.lsystem);
-    if (in.stream) {
-        if (!obstacle.empty())
-            throw Error(SourceLocation{l.model.lsystem.file, 0, 0},
-                        "--stream: this L-system cannot be streamed: " + obstacle);
-        if (!canStream) throw usageError("--stream is not available for this output");
-        return true;
-    }
-    GrowthPrediction g = predictGrowth(l.model.lsystem, l.steps);
-    if (g.expectedModules.size() < 2) return false;
-    // Streaming needs no memory, but time grows with the string: past this many modules a
-    // run would take hours, so it is refused with a message rather than started.
-    const double streamLimit = static_cast<double>(in.streamLimit);
-    // The last step holds the previous string and the new one; parameters take more.
-    double perModule = l.model.lsystem.isParametric() ? 1 + 4 + 8 * 2 : 1;
-    double last = g.expectedModules.back(),
-           previous = g.expectedModules[g.expectedModules.size() - 2];
-    double bytes = (last + previous) * perModule;
-    // A picture drawn from a held string also holds its segments.
-    if (countGeometry && g.exact) {
-        double segments = 0;
-        for (Symbol s : {Symbol('F'), Symbol('G')})
-            if (s < g.symbolsAtEnd.size()) segments += g.symbolsAtEnd[s].toDouble();
-        bytes = last * perModule + segments * static_cast<double>(sizeof(Segment));
-    }
-    if (bytes <= static_cast<double>(in.memoryLimit)) return false;
-    std::string size =
-        g.exact ? g.modules.back().toString() : "about " + formatNumber(std::round(last));
-    if (canStream && obstacle.empty() && last > streamLimit && !pixelBound)
-        obstacle = "more than --stream-limit " + formatNumber(streamLimit) + " modules";
-    if (canStream && obstacle.empty()) {
-        note(in, "the string would have " + size +
-                     " modules, more than --memory-limit holds; "
-                     "streaming it instead");
-        return true;
-    }
-    throw Error(
-        SourceLocation{l.model.lsystem.file, 0, 0},
-        "derivation step " + std::to_string(l.steps) + " would make a string of " + size +
-            " modules (about " + formatBytes(bytes) + "), more than the memory limit of " +
-            formatBytes(static_cast<double>(in.memoryLimit)) +
-            "; lower the derivation length (-n) or raise --memory-limit" +
-            (obstacle.empty() || !canStream ? std::string()
-                                            : " (it cannot be streamed: " + obstacle + ")"));
+    std::vector<Diagnostic> notes;
+    return shouldStream(l.model, l.steps, deriveRequest(in), canStream, countGeometry, pixelBound,
+                        notes);
 }
 
 Derived deriveLoaded(Loaded loaded, const InputOptions& in) {
@@ -325,7 +295,8 @@ int runStats(const InputOptions& in, bool geometry, bool predict) {
     j["file"] = in.file;
     j["steps"] = l.steps;
     if (chooseStreaming(l, in, true)) {
-        StreamedMeasure m = measureStreamed(l.model, l.steps, derivationOptions(in, l.model), geometry);
+        StreamedMeasure m =
+            measureStreamed(l.model, l.steps, derivationOptions(in, l.model), geometry);
         j["modules"] = m.modules;
         j["symbols"] = symbolsJson(l.model.lsystem.symbols, m.symbolCounts);
         if (geometry) {
@@ -342,10 +313,10 @@ int runStats(const InputOptions& in, bool geometry, bool predict) {
     // homomorphism that walk also counts the symbols, so the string is read once.
     std::optional<StreamedMeasure> m;
     if (geometry)
-        m = measureModules(
-            l.model, l.model.lsystem.homomorphism.empty()
-                         ? modules
-                         : applyHomomorphism(l.model.lsystem, modules, derivationOptions(in, l.model)));
+        m = measureModules(l.model, l.model.lsystem.homomorphism.empty()
+                                        ? modules
+                                        : applyHomomorphism(l.model.lsystem, modules,
+                                                            derivationOptions(in, l.model)));
     std::vector<std::uint64_t> counts;
     if (m && l.model.lsystem.homomorphism.empty()) {
         counts = m->symbolCounts;

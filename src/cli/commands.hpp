@@ -12,6 +12,7 @@
 #include "graftal/model.hpp"
 #include "graftal/module_string.hpp"
 #include "graftal/output.hpp"
+#include "graftal/pipeline.hpp"
 
 namespace graftal::cli {
 
@@ -59,13 +60,11 @@ struct Derived {
     int steps = 0;
 };
 Derived deriveLoaded(Loaded loaded, const InputOptions& in);
+// The library's request for these options: progress on a terminal, notes on stderr.
+DeriveRequest deriveRequest(const InputOptions& in);
 // The model's view places the turtle that answers query modules.
 DerivationOptions derivationOptions(const InputOptions& in, const Model& model);
-// Whether to stream: when --stream asks (an error if the L-system cannot be streamed), or
-// when the predicted string would not fit the memory limit and `canStream` (then a note
-// says so). When it would not fit and cannot stream, refuses before allocating. A streamed
-// run longer than --stream-limit is refused unless `pixelBound` (a picture whose time
-// grows with its pixels, not with the string).
+// graftal::shouldStream for these options; its note goes to stderr.
 bool chooseStreaming(const Loaded& l, const InputOptions& in, bool canStream,
                      bool countGeometry = false, bool pixelBound = false);
 void note(const InputOptions& in, const std::string& message);

@@ -173,6 +173,7 @@ void Derivation::afterStep(int stepNumber) {
 }
 
 void Derivation::step() {
+    options_.cancel.check();
     int stepNumber = steps_ + 1;
     // Cut first, into a scratch string, so that a step that fails leaves current_ intact.
     ModuleString pruned;
@@ -180,6 +181,7 @@ void Derivation::step() {
         lsystem_.usesCut() && pruneCuts(*current_, pruned) ? pruned : *current_;
     rules_->step(source, *next_, stepNumber, lsystem_.tableForStep(stepNumber),
                  options_.memoryLimit);
+    options_.cancel.check();
     std::swap(current_, next_);
     ++steps_;
     afterStep(stepNumber);
@@ -190,8 +192,7 @@ void Derivation::run(int steps) {
     for (int i = 0; i < steps; ++i) step();
 }
 
-namespace {
-}  // namespace
+namespace {}  // namespace
 
 Derivation::Derivation(const Model& model, DerivationOptions options)
     : Derivation(model.lsystem, std::move(options)) {}

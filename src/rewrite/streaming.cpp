@@ -49,6 +49,9 @@ void streamDerivation(const LSystem& ls, int steps, ModuleSink& sink,
     std::vector<std::uint64_t> position(level.size(), 0);
     level[0] = ls.axiom;
     std::size_t d = 0;
+    // A streamed derivation is one long step: the token is looked at every few thousand
+    // expansions, often enough to stop within a millisecond, rarely enough to cost nothing.
+    std::uint32_t expansions = 0;
     while (true) {
         if (cursor[d] == level[d].size()) {
             if (d == 0) break;
@@ -64,6 +67,7 @@ void streamDerivation(const LSystem& ls, int steps, ModuleSink& sink,
                 for (std::size_t k = d; k < level.size(); ++k) ++position[k];
             continue;
         }
+        if ((++expansions & 0xFFFu) == 0) options.cancel.check();
         std::uint64_t pos = position[d]++;
         ModuleString& next = level[d + 1];
         next.clear();

@@ -1,0 +1,101 @@
+// The whole road from a parsed model to a file, decided as the graftal command decides it:
+// whether to stream, which surfaces and colour map, the camera (the file's view with the
+// caller's overrides), ray tracing for 3D pictures, line art for 2D ones. A program that
+// embeds graftal calls render() and gets the same picture `graftal render` would write.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "graftal/cancellation.hpp"
+#include "graftal/derivation.hpp"
+#include "graftal/diagnostics.hpp"
+#include "graftal/file_format.hpp"
+#include "graftal/model.hpp"
+#include "graftal/module_string.hpp"
+#include "graftal/output.hpp"
+#include "graftal/projection.hpp"
+#include "graftal/vec3.hpp"
+
+namespace graftal {
+
+enum class StreamPolicy {
+    Auto,    // stream only when the string would not fit the memory limit (with a note)
+    Always,  // always stream; an error when the L-system or the output cannot be streamed
+};
+
+// How to derive: what `-n`, `--seed`, `--threads`, `--memory-limit` and `--stream` say.
+struct DeriveRequest {
+    std::optional<int> steps;  // empty: the file's derivation length
+    std::optional<std::uint64_t> seed;
+    unsigned threads = 0;  // 0: one per core
+    std::size_t memoryLimit = std::size_t(2) << 30;
+    StreamPolicy stream = StreamPolicy::Auto;
+    std::uint64_t streamLimit = 100'000'000'000ull;  // the largest string streamed
+    // Called after every derivation step with the step and the string's size.
+    std::function<void(int step, std::size_t modules)> progress;
+    // Called at once with every note (e.g. "streaming it instead"); they are also returned.
+    std::function<void(const Diagnostic&)> notify;
+    CancellationToken cancel;
+};
+
+struct RenderRequest : DeriveRequest {
+    std::filesystem::path output;  // its extension picks the format (see file_format.hpp)
+    // Surfaces and colour maps named by the model are read relative to this file's folder;
+    // empty: the model's own file.
+    std::filesystem::path sourceFile;
+    RenderOptions picture;              // size, margin, line width, ...
+    std::optional<Rgb> background;      // overrides the file's background
+    std::optional<ViewDirection> view;  // draw a 3D scene as line art seen from here
+    // Camera overrides for ray-traced pictures; each empty one takes the file's view.
+    std::optional<Vec3> viewpoint, target, up, light;
+    std::optional<double> fieldOfView;
+    int samplesPerPixel = 4;
+    int tubeSides = 8;
+    std::optional<int> spline;       // B-spline subdivisions (0: off); empty: the file's
+    bool derivationDiagram = false;  // draw the derivation steps, not the turtle's picture
+};
+
+enum class RenderRoute {
+    StreamedPicture,    // drawn while the derivation streamed
+    LineArt,            // 2D (or projected 3D) picture
+    RayTraced,          // 3D scene as a ray-traced PNG
+    Mesh,               // OBJ, PLY or glTF binary
+    DerivationDiagram,  // the strings of every step, asked for or because nothing is drawn
+};
+
+struct RenderResult {
+    int steps = 0;
+    RenderRoute route = RenderRoute::LineArt;
+    std::vector<Diagnostic> notes;
+};
+
+// The steps a request asks for: its own, else the model's derivation length. Throws Error
+// for a negative count.
+int requestedSteps(const Model& model, const DeriveRequest& request);
+
+// Whether to stream. Auto: when the predicted string would not fit the memory limit and
+// `canStream` (with a note). When it would not fit and cannot stream, throws before
+// anything is allocated. A streamed run longer than streamLimit is refused unless
+// `pixelBound` (a picture whose time grows with its pixels, not with the string).
+bool shouldStream(const Model& model, int steps, const DeriveRequest& request, bool canStream,
+                  bool countGeometry, bool pixelBound, std::vector<Diagnostic>& notes);
+
+// The options of a derivation made for a request (its query resolver places the turtle of
+// the model's view).
+DerivationOptions derivationOptions(const Model& model, const DeriveRequest& request);
+
+// The request's output format; throws Error for an unknown extension or options that do not
+// fit it (a view or a derivation diagram for a 3D file), before anything is derived.
+FileFormat checkRenderRequest(const RenderRequest& request);
+
+// Derives and renders to request.output as `graftal render` does. Throws Error (Cancelled
+// when request.cancel is raised); no partial output file is left.
+RenderResult render(const Model& model, const RenderRequest& request);
+
+}  // namespace graftal

@@ -1,0 +1,11 @@
+#include "graftal/cancellation.hpp"
+
+namespace graftal {
+
+void CancellationToken::check() const {
+    if (cancelled()) throw Cancelled();
+}
+
+Cancelled::Cancelled() : Error(SourceLocation{}, "cancelled") {}
+
+}  // namespace graftal

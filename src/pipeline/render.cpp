@@ -1,0 +1,226 @@
+// render(): a model to a picture or a 3D file. 2D scenes become line art; 3D scenes become
+// ray-traced PNGs and meshes, or line art seen from a view direction.
+#include <algorithm>
+#include <filesystem>
+
+#include "graftal/bspline.hpp"
+#include "graftal/color_map.hpp"
+#include "graftal/derivation_diagram.hpp"
+#include "graftal/file_format.hpp"
+#include "graftal/mesh.hpp"
+#include "graftal/pipeline.hpp"
+#include "graftal/render3d.hpp"
+#include "graftal/streamed_picture.hpp"
+#include "graftal/surface.hpp"
+#include "graftal/turtle.hpp"
+
+namespace graftal {
+
+namespace {
+
+Error requestError(const std::string& message) {
+    return Error(SourceLocation{"graftal", 0, 0}, message);
+}
+
+std::filesystem::path sourceFolder(const Model& model, const RenderRequest& request) {
+    const std::filesystem::path file =
+        request.sourceFile.empty() ? std::filesystem::path(model.lsystem.file) : request.sourceFile;
+    return file.parent_path();
+}
+
+// Surfaces a file declares (`surface: l leaf.s 0.5`) are read relative to the file; a
+// name without a file on disk falls back to the built-in surfaces (leaf, petal).
+SurfaceLibrary surfacesFor(const ViewSettings& view, const std::filesystem::path& dir) {
+    SurfaceLibrary lib = SurfaceLibrary::builtin();
+    for (const auto& decl : view.surfaces) {
+        std::filesystem::path path = dir / decl.file;
+        Surface s;
+        if (std::filesystem::exists(path)) {
+            s = loadSurface(path);
+        } else if (const Surface* builtin =
+                       lib.find(std::filesystem::path(decl.file).stem().string())) {
+            s = *builtin;
+        } else {
+            throw Error(decl.location, "surface file '" + decl.file + "' not found (looked in " +
+                                           (dir.empty() ? std::string(".") : dir.string()) +
+                                           " and the built-in surfaces)");
+        }
+        s.name = decl.name;
+        s.size *= decl.scale;
+        lib.add(std::move(s));
+    }
+    return lib;
+}
+
+// The file's view with the request's overrides.
+RaytraceOptions raytraceOptions(const ViewSettings& v, const RenderRequest& request) {
+    RaytraceOptions r;
+    r.width = request.picture.width;
+    r.height = request.picture.height;
+    r.samplesPerPixel = request.samplesPerPixel;
+    r.threads = request.threads;
+    r.background = request.background ? *request.background
+                                      : v.background.value_or(request.picture.background);
+    r.camera.viewpoint = request.viewpoint ? request.viewpoint : v.viewpoint;
+    r.camera.target = request.target ? request.target : v.viewReferencePoint;
+    if (auto up = request.up ? request.up : v.upVector) r.camera.up = *up;
+    if (auto fov = request.fieldOfView ? request.fieldOfView : v.fieldOfView)
+        r.camera.fieldOfView = *fov;
+    r.camera.orthographic = v.parallelProjection;
+    if (auto light = request.light ? request.light : v.lightDirection)
+        r.lighting.sunDirection = *light;
+    return r;
+}
+
+// Line art's options: pfg's scale factor makes the picture fill that share of the frame
+// (100 = all of it), and the file's background applies unless the request overrides it.
+RenderOptions lineArtOptions(const Model& model, const RenderRequest& request) {
+    RenderOptions render = request.picture;
+    double fill = std::clamp(model.view.scaleFactor / 100.0, 0.01, 1.0);
+    render.margin = 0.5 - (0.5 - render.margin) * fill;
+    if (request.background)
+        render.background = *request.background;
+    else if (model.view.background)
+        render.background = *model.view.background;
+    return render;
+}
+
+// The derivation as a diagram: the axiom and the string after every step.
+void renderDerivation(const Model& model, int steps, const RenderRequest& request) {
+    std::vector<ModuleString> strings;
+    Derivation derivation(model, derivationOptions(model, request));
+    strings.push_back(derivation.current());
+    for (int k = 0; k < steps; ++k) {
+        derivation.step();
+        strings.push_back(derivation.current());
+    }
+    RenderOptions render = request.picture;
+    if (request.background)
+        render.background = *request.background;
+    else if (model.view.background)
+        render.background = *model.view.background;
+    request.cancel.check();
+    writeDerivationDiagram(strings, model.lsystem.symbols, render, request.output);
+}
+
+void addNote(RenderResult& result, const RenderRequest& request, const Model& model,
+             std::string message) {
+    Diagnostic d{Severity::Note, SourceLocation{model.lsystem.file, 0, 0}, std::move(message)};
+    if (request.notify) request.notify(d);
+    result.notes.push_back(std::move(d));
+}
+
+}  // namespace
+
+FileFormat checkRenderRequest(const RenderRequest& request) {
+    const std::string output = request.output.string();
+    const std::optional<FileFormat> format = fileFormatFor(output);
+    if (!format)
+        throw requestError("-o " + output + ": unknown format (use " + extensionList() + ")");
+    const bool picture = fileFormatInfo(*format).kind == FormatKind::Picture;
+    if (request.view && !picture)
+        throw requestError("--view draws 2D line art; it applies to " +
+                           extensionList(FormatKind::Picture, ", ", " and ") + ", not 3D files");
+    if (request.derivationDiagram && !picture)
+        throw requestError("--derivation draws a picture; use .svg, .png or .pdf");
+    return *format;
+}
+
+RenderResult render(const Model& model, const RenderRequest& request) {
+    const std::string output = request.output.string();
+    const std::optional<FileFormat> format = checkRenderRequest(request);
+    const bool picture = fileFormatInfo(*format).kind == FormatKind::Picture;
+
+    RenderResult result;
+    result.steps = requestedSteps(model, request);
+    const int steps = result.steps;
+    if (request.derivationDiagram) {
+        request.cancel.check();
+        renderDerivation(model, steps, request);
+        result.route = RenderRoute::DerivationDiagram;
+        return result;
+    }
+
+    {
+        // A 2D PNG can be drawn while the derivation streams; everything else needs the scene.
+        bool png2D = *format == FileFormat::Png;
+        bool pixelBound = png2D && streamedPictureIsSummarised(model, steps, request.memoryLimit);
+        if (shouldStream(model, steps, request, png2D, true, pixelBound, result.notes)) {
+            RenderOptions render = request.picture;
+            double fill = std::clamp(model.view.scaleFactor / 100.0, 0.01, 1.0);
+            render.margin = 0.5 - (0.5 - render.margin) * fill;
+            renderStreamedPng(model, steps, derivationOptions(model, request), render, output);
+            result.route = RenderRoute::StreamedPicture;
+            return result;
+        }
+    }
+    const DerivationOptions derivation = derivationOptions(model, request);
+    ModuleString modules = derive(model, steps, derivation);
+    request.cancel.check();
+    Scene scene = interpret(model, applyHomomorphism(model.lsystem, modules, derivation));
+    modules = ModuleString{};
+    if (int n = request.spline.value_or(model.view.splineSubdivisions); n > 0)
+        scene = smoothSegments(scene, n);
+    const std::filesystem::path folder = sourceFolder(model, request);
+    if (!model.view.colorMap.empty()) scene.palette = loadColorMap(folder / model.view.colorMap);
+
+    if (picture && scene.segments.empty() && scene.polygonCount() == 0 && scene.surfaces.empty()) {
+        // No turtle meaning (Anabaena's cells, the Fibonacci words): the derivation is
+        // the picture the book draws for such systems.
+        addNote(result, request, model, "the string draws nothing; drawing its derivation instead");
+        renderDerivation(model, steps, request);
+        result.route = RenderRoute::DerivationDiagram;
+        return result;
+    }
+    request.cancel.check();
+
+    bool threeD = scene.is3D && !request.view;
+    if (picture && !(threeD && *format == FileFormat::Png)) {
+        // Line art: 2D scenes as they are, 3D scenes seen from the front unless told.
+        if (scene.is3D) scene = projectScene(scene, request.view.value_or(ViewDirection::Front));
+        writeImage(scene, lineArtOptions(model, request), output);
+        result.route = RenderRoute::LineArt;
+        return result;
+    }
+
+    // Uncoloured 3D plants are bark brown, not line art's ink, so their shading shows.
+    if (model.view.colorMap.empty()) scene.palette = defaultPalette3D();
+    SurfaceLibrary surfaces = surfacesFor(model.view, folder);
+    MeshOptions mo;
+    mo.tubeSides = request.tubeSides;
+    mo.cylinders = model.view.lineStyle == LineStyle::Cylinders;
+    if (picture) {
+        // In a picture, a stem thinner than a pixel would vanish between the rays: draw it at
+        // least about a pixel wide, as line art would. 3D files keep the true widths.
+        Bounds b = scene.bounds();
+        if (!b.empty()) {
+            double extent = std::max({b.max.x - b.min.x, b.max.y - b.min.y, b.max.z - b.min.z});
+            double pixel = extent / (0.6 * std::min(request.picture.width, request.picture.height));
+            mo.minimumRadius = 0.5 * pixel;
+        }
+    }
+    Mesh mesh = buildMesh(scene, mo, &surfaces);
+    request.cancel.check();
+    result.route = RenderRoute::Mesh;
+    switch (*format) {
+        case FileFormat::Obj:
+            writeObj(mesh, output);
+            break;
+        case FileFormat::Ply:
+            writePly(mesh, output);
+            break;
+        case FileFormat::Glb:
+            writeGlb(mesh, output);
+            break;
+        case FileFormat::Png:
+        case FileFormat::Svg:
+        case FileFormat::Pdf:
+            // Only a 3D scene drawn as a PNG gets here: it is ray traced.
+            renderRaytraced(mesh, raytraceOptions(model.view, request), output);
+            result.route = RenderRoute::RayTraced;
+            break;
+    }
+    return result;
+}
+
+}  // namespace graftal
