@@ -38,6 +38,10 @@ Surface loadSurface(const std::filesystem::path& path);
 // Point and normal of a patch at (s, t) in [0,1]^2.
 Vec3 evaluatePatch(const BezierPatch& p, double s, double t, Vec3* normal = nullptr);
 
+// The folder of the built-in surfaces: share/graftal/surfaces beside the installed
+// library (found from where the library is loaded). Throws Error when it is missing.
+std::filesystem::path builtinSurfacesDirectory();
+
 class SurfaceLibrary {
   public:
     // The surfaces shipped with graftal (a leaf and a petal), always available.

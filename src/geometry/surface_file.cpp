@@ -13,8 +13,16 @@
 
 #include "graftal/surface.hpp"
 
-#ifndef GRAFTAL_SURFACES_DIR
-#define GRAFTAL_SURFACES_DIR "surfaces"
+#include <dlfcn.h>
+
+// Where the built-in surfaces lie relative to the folder of the binary holding this code
+// (the shared library, or a program linked with the static one): set by CMake from the
+// install layout, "../share/graftal/surfaces" for the usual lib/ and share/.
+#ifndef GRAFTAL_SURFACES_FROM_LIBDIR
+#define GRAFTAL_SURFACES_FROM_LIBDIR "../share/graftal/surfaces"
+#endif
+#ifndef GRAFTAL_SURFACES_FROM_BINDIR
+#define GRAFTAL_SURFACES_FROM_BINDIR "../share/graftal/surfaces"
 #endif
 
 namespace graftal {
@@ -381,12 +389,33 @@ Surface loadSurface(const std::filesystem::path& path) {
     return parseSurface(text, path.string());
 }
 
+std::filesystem::path builtinSurfacesDirectory() {
+    // Found from where the code is, not from a path fixed at build time, so that an
+    // installed copy works wherever its prefix was put. The build tree links its own
+    // share/graftal/surfaces to the source folder.
+    Dl_info info{};
+    if (dladdr(reinterpret_cast<const void*>(&builtinSurfacesDirectory), &info) == 0 ||
+        info.dli_fname == nullptr)
+        throw Error(SourceLocation{}, "cannot tell where the graftal library is loaded from");
+    std::error_code ec;
+    const fs::path binary = fs::canonical(fs::path(info.dli_fname), ec);
+    const fs::path folder = (ec ? fs::path(info.dli_fname) : binary).parent_path();
+    for (const char* relative :
+         {GRAFTAL_SURFACES_FROM_LIBDIR, GRAFTAL_SURFACES_FROM_BINDIR, "share/graftal/surfaces"}) {
+        fs::path candidate = folder / relative;
+        if (fs::is_directory(candidate, ec)) return candidate.lexically_normal();
+    }
+    throw Error(
+        SourceLocation{(folder / GRAFTAL_SURFACES_FROM_LIBDIR).lexically_normal().string(), 0, 0},
+        "the built-in surfaces are not installed here");
+}
+
 SurfaceLibrary SurfaceLibrary::builtin() {
     // Parsed once; a failed load throws out of the initialiser, which is then retried by
     // the next call rather than caching a half-built library.
     static const SurfaceLibrary kBuiltin = [] {
         SurfaceLibrary lib;
-        lib.addDirectory(GRAFTAL_SURFACES_DIR);
+        lib.addDirectory(builtinSurfacesDirectory());
         return lib;
     }();
     return kBuiltin;
