@@ -164,7 +164,8 @@ RenderResult render(const Model& model, const RenderRequest& request) {
     const std::filesystem::path folder = sourceFolder(model, request);
     if (!model.view.colorMap.empty()) scene.palette = loadColorMap(folder / model.view.colorMap);
 
-    if (picture && scene.segments.empty() && scene.polygonCount() == 0 && scene.surfaces.empty()) {
+    if (picture && scene.segments.empty() && scene.polygonCount() == 0 && scene.surfaces.empty() &&
+        scene.discs.empty() && scene.spheres.empty()) {
         // No turtle meaning (Anabaena's cells, the Fibonacci words): the derivation is
         // the picture the book draws for such systems.
         addNote(result, request, model, "the string draws nothing; drawing its derivation instead");
@@ -177,7 +178,9 @@ RenderResult render(const Model& model, const RenderRequest& request) {
     bool threeD = scene.is3D && !request.view;
     if (picture && !(threeD && *format == FileFormat::Png)) {
         // Line art: 2D scenes as they are, 3D scenes seen from the front unless told.
-        if (scene.is3D) scene = projectScene(scene, request.view.value_or(ViewDirection::Front));
+        // Discs and spheres are drawn as their projected outlines.
+        if (scene.is3D || !scene.discs.empty() || !scene.spheres.empty())
+            scene = projectScene(scene, request.view.value_or(ViewDirection::Front));
         writeImage(scene, lineArtOptions(model, request), output);
         result.route = RenderRoute::LineArt;
         return result;
