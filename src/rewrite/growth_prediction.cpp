@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <map>
+#include <utility>
 
 namespace graftal {
 
@@ -109,20 +111,51 @@ std::string unpredictable(const LSystem& ls) {
     return {};
 }
 
+// Productions match a module by its symbol and its number of parameters: `L` and `L(i)`
+// are rewritten by different productions (an `L(i) --> L` turns one kind into the other),
+// so the prediction counts each (symbol, arity) as a kind of module of its own. Every kind
+// a derivation can make is in the axiom or in a successor.
+class ModuleKinds {
+  public:
+    explicit ModuleKinds(const LSystem& ls) {
+        for (std::size_t i = 0; i < ls.axiom.size(); ++i)
+            add(ls.axiom.symbol(i), ls.axiom.params(i).size());
+        for (const auto& p : ls.productions)
+            for (const auto& m : p.successor) add(m.symbol, m.args.size());
+    }
+    std::size_t size() const { return kinds_.size(); }
+    Symbol symbol(std::size_t kind) const { return kinds_[kind].first; }
+    std::size_t of(Symbol symbol, std::size_t arity) const { return index_.at({symbol, arity}); }
+    std::optional<std::size_t> find(Symbol symbol, std::size_t arity) const {
+        auto it = index_.find({symbol, arity});
+        if (it == index_.end()) return std::nullopt;
+        return it->second;
+    }
+
+  private:
+    void add(Symbol symbol, std::size_t arity) {
+        if (index_.emplace(std::pair{symbol, arity}, kinds_.size()).second)
+            kinds_.emplace_back(symbol, arity);
+    }
+    std::vector<std::pair<Symbol, std::size_t>> kinds_;
+    std::map<std::pair<Symbol, std::size_t>, std::size_t> index_;
+};
+
 }  // namespace
 
 GrowthPrediction predictGrowth(const LSystem& ls, int steps) {
     GrowthPrediction g;
     g.reason = unpredictable(ls);
     if (!g.reason.empty()) return g;
-    std::size_t n = ls.symbols.size();
+    const ModuleKinds kinds(ls);
+    const std::size_t n = kinds.size();
     bool stochastic = false;
     for (const auto& p : ls.productions) stochastic |= p.probability.has_value();
 
     std::size_t tables = std::max<std::size_t>(1, ls.tableNames.size());
-    // Per table, per predecessor symbol: (successor symbol counts, weight) of each choice.
+    // Per table, per kind of module: (successor kind counts, weight) of each choice.
     struct Choice {
-        std::vector<std::pair<Symbol, std::uint64_t>> counts;
+        std::vector<std::pair<std::size_t, std::uint64_t>> counts;
         double weight = 1;
     };
     std::vector<std::vector<std::vector<Choice>>> choices(tables,
@@ -130,15 +163,18 @@ GrowthPrediction predictGrowth(const LSystem& ls, int steps) {
     for (std::size_t t = 0; t < tables; ++t) {
         for (const auto& p : ls.productions) {
             if (p.table >= 0 && static_cast<std::size_t>(p.table) != t) continue;
-            auto& list = choices[t][p.predecessor[0].symbol];
+            // A production applies only to modules with as many parameters as its formals.
+            const ModulePattern& pred = p.predecessor[0];
+            std::optional<std::size_t> kind = kinds.find(pred.symbol, pred.formals.size());
+            if (!kind) continue;  // no module it could rewrite ever exists
+            auto& list = choices[t][*kind];
             // Deterministic: the first production wins, later ones never apply.
             if (!p.probability && !list.empty()) continue;
             if (p.probability && !list.empty() && list.front().weight < 0) continue;
             Choice c;
-            std::vector<std::uint64_t> hist(n, 0);
-            for (const auto& m : p.successor) ++hist[m.symbol];
-            for (std::size_t s = 0; s < n; ++s)
-                if (hist[s]) c.counts.push_back({static_cast<Symbol>(s), hist[s]});
+            std::map<std::size_t, std::uint64_t> hist;
+            for (const auto& m : p.successor) ++hist[kinds.of(m.symbol, m.args.size())];
+            c.counts.assign(hist.begin(), hist.end());
             c.weight = p.probability ? p.probability->evaluate({}) : -1;  // -1: deterministic
             list.push_back(std::move(c));
         }
@@ -146,9 +182,10 @@ GrowthPrediction predictGrowth(const LSystem& ls, int steps) {
 
     std::vector<BigCount> exact(n);
     std::vector<double> expect(n, 0);
-    for (Symbol s : ls.axiom.symbols()) {
-        exact[s] += BigCount(1);
-        expect[s] += 1;
+    for (std::size_t i = 0; i < ls.axiom.size(); ++i) {
+        std::size_t k = kinds.of(ls.axiom.symbol(i), ls.axiom.params(i).size());
+        exact[k] += BigCount(1);
+        expect[k] += 1;
     }
     auto total = [&] {
         BigCount sum;
@@ -204,8 +241,10 @@ GrowthPrediction predictGrowth(const LSystem& ls, int steps) {
     g.expected = stochastic;
     if (stochastic)
         g.modules.clear();
-    else
-        g.symbolsAtEnd = exact;
+    else {
+        g.symbolsAtEnd.assign(ls.symbols.size(), BigCount());
+        for (std::size_t k = 0; k < n; ++k) g.symbolsAtEnd[kinds.symbol(k)] += exact[k];
+    }
     return g;
 }
 
