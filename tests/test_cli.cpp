@@ -182,3 +182,36 @@ TEST(Cli, CirclesAloneRenderAsAPicture) {
         ++fills;
     EXPECT_EQ(fills, 30u) << "one filled circle per @c";
 }
+
+TEST(Cli, UsageMistakesNameWhatWasTypedAndWhatWasExpected) {
+    TempDir t;
+    auto f = t.write("koch.l", kKoch);
+    struct Case {
+        std::string args, message;
+    };
+    for (const Case& c : std::vector<Case>{
+             {"frobnicate " + f.string(),
+              "graftal: error: unknown subcommand 'frobnicate' (subcommands: derive, stats, "
+              "render)\n"},
+             {"render -x 3 " + f.string() + " -o k.png",
+              "graftal: error: unknown option '-x' for render (see graftal render --help)\n"},
+             {"derive -n abc " + f.string(),
+              "graftal: error: -n abc: expected a whole number of steps\n"},
+             {"derive --steps=2x " + f.string(),
+              "graftal: error: --steps 2x: expected a whole number of steps\n"},
+             {"render " + f.string() + " -o k.png --margin wide",
+              "graftal: error: --margin wide: expected a number\n"}}) {
+        auto r = runGraftal(c.args);
+        EXPECT_EQ(r.status, 2) << c.args;
+        EXPECT_EQ(r.err, c.message) << c.args;
+        EXPECT_EQ(r.out, "");
+    }
+}
+
+TEST(Cli, HelpPointsToSubcommandHelpDocsAndExamples) {
+    auto r = runGraftal("--help");
+    EXPECT_EQ(r.status, 0);
+    EXPECT_NE(r.out.find("graftal SUBCOMMAND --help"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("docs/"), std::string::npos);
+    EXPECT_NE(r.out.find("examples/"), std::string::npos);
+}
