@@ -215,3 +215,19 @@ TEST(Cli, HelpPointsToSubcommandHelpDocsAndExamples) {
     EXPECT_NE(r.out.find("docs/"), std::string::npos);
     EXPECT_NE(r.out.find("examples/"), std::string::npos);
 }
+
+TEST(Cli, MisspeltKeywordsSuggestTheClosestOne) {
+    TempDir t;
+    auto f = t.write("m.l", "Lsystem: 1\nderivaton length: 3\naxiom: F\nF --> FF\nendlsytem\n");
+    auto r = runGraftal("derive " + f.string());
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("m.l:2:1: error: unknown keyword 'derivaton length:'; did you mean "
+                         "'derivation length:'?\n"),
+              std::string::npos)
+        << r.err;
+    EXPECT_NE(
+        r.err.find("m.l:5:1: error: unknown keyword 'endlsytem'; did you mean 'endlsystem'?\n"),
+        std::string::npos)
+        << r.err;
+    EXPECT_EQ(r.err.find("arrow"), std::string::npos) << "not taken for a production";
+}
