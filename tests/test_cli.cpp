@@ -182,3 +182,52 @@ TEST(Cli, CirclesAloneRenderAsAPicture) {
         ++fills;
     EXPECT_EQ(fills, 30u) << "one filled circle per @c";
 }
+
+TEST(Cli, UsageMistakesNameWhatWasTypedAndWhatWasExpected) {
+    TempDir t;
+    auto f = t.write("koch.l", kKoch);
+    struct Case {
+        std::string args, message;
+    };
+    for (const Case& c : std::vector<Case>{
+             {"frobnicate " + f.string(),
+              "graftal: error: unknown subcommand 'frobnicate' (subcommands: derive, stats, "
+              "render)\n"},
+             {"render -x 3 " + f.string() + " -o k.png",
+              "graftal: error: unknown option '-x' for render (see graftal render --help)\n"},
+             {"derive -n abc " + f.string(),
+              "graftal: error: -n abc: expected a whole number of steps\n"},
+             {"derive --steps=2x " + f.string(),
+              "graftal: error: --steps 2x: expected a whole number of steps\n"},
+             {"render " + f.string() + " -o k.png --margin wide",
+              "graftal: error: --margin wide: expected a number\n"}}) {
+        auto r = runGraftal(c.args);
+        EXPECT_EQ(r.status, 2) << c.args;
+        EXPECT_EQ(r.err, c.message) << c.args;
+        EXPECT_EQ(r.out, "");
+    }
+}
+
+TEST(Cli, HelpPointsToSubcommandHelpDocsAndExamples) {
+    auto r = runGraftal("--help");
+    EXPECT_EQ(r.status, 0);
+    EXPECT_NE(r.out.find("graftal SUBCOMMAND --help"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("docs/"), std::string::npos);
+    EXPECT_NE(r.out.find("examples/"), std::string::npos);
+}
+
+TEST(Cli, MisspeltKeywordsSuggestTheClosestOne) {
+    TempDir t;
+    auto f = t.write("m.l", "Lsystem: 1\nderivaton length: 3\naxiom: F\nF --> FF\nendlsytem\n");
+    auto r = runGraftal("derive " + f.string());
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("m.l:2:1: error: unknown keyword 'derivaton length:'; did you mean "
+                         "'derivation length:'?\n"),
+              std::string::npos)
+        << r.err;
+    EXPECT_NE(
+        r.err.find("m.l:5:1: error: unknown keyword 'endlsytem'; did you mean 'endlsystem'?\n"),
+        std::string::npos)
+        << r.err;
+    EXPECT_EQ(r.err.find("arrow"), std::string::npos) << "not taken for a production";
+}

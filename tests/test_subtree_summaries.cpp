@@ -173,3 +173,39 @@ TEST(SubtreeSummaries, StreamedRenderOfBillionsOfSegments) {
     for (int v : g) dark += v < 200;
     EXPECT_GT(dark, 1000) << "the island's outline is drawn";
 }
+
+namespace {
+
+// Counts what a summarised drawing hands over, drawing nothing.
+class CountingDrawing : public StreamedDrawing {
+  public:
+    std::uint64_t segments = 0;
+    void segment(const Segment&) override { ++segments; }
+    void polygon(std::span<const Vec3>, std::uint16_t) override {}
+};
+
+}  // namespace
+
+TEST(SubtreeSummaries, BacktrackingKochCurveDrawsAtMostFourStrokesPerPixel) {
+    // ABOP Fig. 1.9e: each side turns back on itself (F-FF--F-F), so the path covers the
+    // picture many times over; its strokes are bounded by the pixels, whatever n.
+    Model ls = loadExample(GRAFTAL_EXAMPLES_DIR "/fig2.5e-koch-curve.l");
+    RenderOptions o;
+    const double budget = 4.0 * o.width * o.height;
+    for (int n : {10, 14}) {
+        SubtreeSummaries sums(ls, n);
+        ASSERT_TRUE(sums.available());
+        StreamedMeasure m = measureSummarised(ls, sums, std::max(o.width, o.height));
+        if (n == 10) EXPECT_EQ(m.segments, 4u * 9765625u);  // 4·5^10
+        const ImageTransform transform = ImageTransform::fit(m.bounds, o);
+        EXPECT_GT(summarisedStrokeCount(sums, transform.scale, 0.25), budget) << n;
+        double dot = dotRadiusWithin(sums, transform.scale, 0.25, budget, 4.0);
+        EXPECT_LT(dot, 4.0) << n;
+        CountingDrawing counting;
+        drawSummarised(ls, sums, transform.scale, dot, counting);
+        EXPECT_EQ(static_cast<double>(counting.segments),
+                  summarisedStrokeCount(sums, transform.scale, dot));
+        EXPECT_LE(static_cast<double>(counting.segments), budget) << n;
+        EXPECT_GT(static_cast<double>(counting.segments), 0.1 * budget) << n;
+    }
+}

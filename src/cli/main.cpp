@@ -1,5 +1,6 @@
 // The graftal command: formats the library's errors, the library itself never prints.
 #include <CLI/CLI.hpp>
+#include <cstdlib>
 #include <iostream>
 
 #include "commands.hpp"
@@ -38,11 +39,83 @@ void addInputOptions(CLI::App& cmd, graftal::cli::InputOptions& in, std::string&
                    "largest string (modules) streamed when it does not fit in memory (1e11)");
 }
 
+// What an option's value must be, in the words of its message.
+std::string expectedValue(const std::string& longName) {
+    if (longName == "--steps") return "a whole number of steps";
+    if (longName == "--threads") return "a whole number of threads";
+    if (longName == "--seed" || longName == "--spp" || longName == "--tube-sides" ||
+        longName == "--spline")
+        return "a whole number";
+    if (longName == "--stream-limit") return "a number of modules";
+    return "a number";
+}
+
+// CLI11's own messages name an option by its long name and list unexpected arguments in
+// reverse; this checks the command line first and says what was typed and what was
+// expected. Empty when the command line looks right (CLI11 then parses it).
+std::string usageProblem(CLI::App& app, int argc, char** argv) {
+    if (argc < 2) return {};
+    const std::string first = argv[1];
+    std::string names;
+    for (const CLI::App* sub : app.get_subcommands({}))
+        names += (names.empty() ? "" : ", ") + sub->get_name();
+    if (first.empty() || first[0] != '-') {
+        CLI::App* sub = nullptr;
+        for (CLI::App* s : app.get_subcommands({}))
+            if (s->get_name() == first) sub = s;
+        if (!sub) return "unknown subcommand '" + first + "' (subcommands: " + names + ")";
+        for (int i = 2; i < argc; ++i) {
+            const std::string arg = argv[i];
+            if (arg == "--") break;
+            if (arg.size() < 2 || arg[0] != '-') continue;
+            const std::string name = arg.substr(0, arg[1] == '-' ? arg.find('=') : 2);
+            if (name == "-h" || name == "--help") return {};
+            const CLI::Option* opt = sub->get_option_no_throw(name);
+            if (!opt)
+                return "unknown option '" + name + "' for " + first + " (see graftal " + first +
+                       " --help)";
+            if (opt->get_expected_max() == 0 || opt->get_type_size_max() == 0) continue;
+            // The value: after '=', glued to a short name (-n5), or the next argument.
+            std::string value;
+            if (name.size() < arg.size())
+                value = arg.substr(name.size() + (arg[name.size()] == '=' ? 1 : 0));
+            else if (i + 1 < argc)
+                value = argv[++i];
+            else
+                return name + ": expected " +
+                       expectedValue(opt->get_lnames().empty() ? name
+                                                               : "--" + opt->get_lnames()[0]);
+            const std::string longName =
+                opt->get_lnames().empty() ? name : "--" + opt->get_lnames()[0];
+            const std::string expected = expectedValue(longName);
+            if (expected.rfind("a whole number", 0) == 0 || expected.rfind("a number", 0) == 0) {
+                if (opt->get_type_name().find("INT") == std::string::npos &&
+                    opt->get_type_name().find("FLOAT") == std::string::npos &&
+                    opt->get_type_name().find("UINT") == std::string::npos)
+                    continue;
+                char* end = nullptr;
+                const bool whole = expected.rfind("a whole number", 0) == 0;
+                if (whole)
+                    (void)std::strtoll(value.c_str(), &end, 10);
+                else
+                    (void)std::strtod(value.c_str(), &end);
+                if (value.empty() || *end != '\0')
+                    return name + " " + value + ": expected " + expected;
+            }
+        }
+    }
+    return {};
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{"graftal: Lindenmayer systems, derived and drawn"};
     app.require_subcommand(1);
+    app.footer(
+        "Each subcommand has its own options: graftal SUBCOMMAND --help.\n"
+        "Documentation: docs/ (docs/cli.md for this command); examples to start from: "
+        "examples/.");
     app.set_version_flag("--version", "graftal 0.1.0");
 
     graftal::cli::InputOptions in;
@@ -97,6 +170,10 @@ int main(int argc, char** argv) {
                      "draw turtle paths as B-splines with N points per segment (0: straight)")
         ->check(CLI::Range(0, 64));
 
+    if (std::string problem = usageProblem(app, argc, argv); !problem.empty()) {
+        std::cerr << "graftal: error: " << problem << "\n";
+        return 2;
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

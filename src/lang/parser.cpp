@@ -2,6 +2,8 @@
 // reads lines, declarations and keyword directives (see parser.hpp).
 #include "parser.hpp"
 
+#include "closest_word.hpp"
+
 #include "graftal/model.hpp"
 
 #include <algorithm>
@@ -296,14 +298,25 @@ void Parser::parseLine(const SourceLine& line) {
             return;
         }
         if (looksLikeKeyword) {
+            std::string typed = "unknown keyword '" +
+                                std::string(trimView(t.substr(start, colon - start))) + ":'; ";
+            if (std::string near = lang::closestWord(kw, kKeywords); !near.empty()) {
+                diags_.error(at(line, start), typed + "did you mean '" + near + ":'?");
+                return;
+            }
             std::string list;
             for (const auto& k : kKeywords) list += (list.empty() ? "" : ", ") + k + ":";
-            diags_.error(at(line, start),
-                         "unknown keyword '" +
-                             std::string(trimView(t.substr(start, colon - start))) +
-                             ":'; expected one of " + list);
+            diags_.error(at(line, start), typed + "expected one of " + list);
             return;
         }
+    }
+    // A line without an arrow that is a misspelt keyword line (endlsytem) is reported as
+    // one, not as a production.
+    if (std::string near = lang::closestWord(word, {"endlsystem", "decomposition", "homomorphism"});
+        !near.empty() && word.find(' ') == std::string::npos) {
+        diags_.error(at(line, start), "unknown keyword '" + std::string(trimView(rest)) +
+                                          "'; did you mean '" + near + "'?");
+        return;
     }
     diags_.error(at(line, start),
                  "expected a production such as 'F --> F+F' (the arrow '-->' is missing) "

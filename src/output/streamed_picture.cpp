@@ -15,6 +15,10 @@ namespace {
 // than a pixel are then drawn as one stroke each (subtree_summaries.hpp). Below it the
 // picture is stroke for stroke the one the materialised path draws.
 constexpr double kSummariseAbove = 2e7;
+// Strokes a summarised picture draws per pixel of its image at most, unless that would take
+// subtrees wider than kLargestDotRadius pixels drawn as one stroke.
+constexpr double kStrokesPerPixel = 4;
+constexpr double kLargestDotRadius = 4;
 
 // What the turtle draws goes straight into the picture.
 class PngDrawing : public StreamedDrawing {
@@ -57,6 +61,11 @@ void renderSummarisedPng(const Model& model, const SubtreeSummaries& sums,
     StreamedPng png(render, measure.bounds, measure.ink, measure.segments > 0, measure.baseWidth,
                     Scene::defaultPalette(), path);
     const ImageTransform transform = ImageTransform::fit(measure.bounds, render);
+    // A path that covers its picture many times over (a Koch curve that turns back on
+    // itself) would still give many strokes per pixel, each costing as much as any and only
+    // darkening pixels already drawn: draw wider subtrees as one stroke instead.
+    dotRadius = dotRadiusWithin(sums, transform.scale, dotRadius,
+                                kStrokesPerPixel * render.width * render.height, kLargestDotRadius);
     PngDrawing drawing(png);
     drawSummarised(model, sums, transform.scale, dotRadius, drawing);
     png.finish();

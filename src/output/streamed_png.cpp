@@ -10,8 +10,8 @@
 namespace graftal {
 
 namespace {
-constexpr int kSegmentsPerStroke = 2000;  // as in cairo_writer.cpp: long paths stroke slowly
-constexpr double kMaxCoordinate = 4e6;    // Cairo's fixed point wraps beyond this
+constexpr int kSegmentsPerStroke = 50;  // as in cairo_writer.cpp: long paths stroke slowly
+constexpr double kMaxCoordinate = 4e6;  // Cairo's fixed point wraps beyond this
 }  // namespace
 
 struct StreamedPng::Impl {

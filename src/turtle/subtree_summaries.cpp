@@ -274,8 +274,8 @@ StreamedMeasure measureSummarised(const Model& model, const SubtreeSummaries& su
     return result;
 }
 
-void drawSummarised(const Model& model, const SubtreeSummaries& sums, double scale, double dotRadius,
-                    StreamedDrawing& drawing) {
+void drawSummarised(const Model& model, const SubtreeSummaries& sums, double scale,
+                    double dotRadius, StreamedDrawing& drawing) {
     DrawingSink sink(drawing);
     turtle::TurtleMachine<DrawingSink> machine(model, sink);
     walk(sums, machine, [&](const SubtreeMotion& m) {
@@ -284,6 +284,43 @@ void drawSummarised(const Model& model, const SubtreeSummaries& sums, double sca
         if (m.segments > 0) drawing.segment(chord);
         return true;
     });
+}
+
+double summarisedStrokeCount(const SubtreeSummaries& sums, double scale, double dotRadius) {
+    if (!sums.available()) return 0;
+    // Strokes per (symbol, string), filled from the last string up as the summaries are.
+    const std::size_t width = sums.symbolCount();
+    std::vector<double> strokes(width * static_cast<std::size_t>(sums.steps() + 1), 0);
+    auto at = [&](Symbol s, int level) -> double& {
+        return strokes[static_cast<std::size_t>(level) * width + s];
+    };
+    for (int level = sums.steps(); level >= 0; --level)
+        for (std::size_t i = 0; i < width; ++i) {
+            auto s = static_cast<Symbol>(i);
+            const SubtreeMotion& m = sums.motion(s, level);
+            if (level == sums.steps() || !sums.rewrittenAfter(s, level)) {
+                at(s, level) = sums.motion(s, sums.steps()).segments;
+                continue;
+            }
+            if (m.summarised && !(m.segments > 0 && m.radius * scale > dotRadius)) {
+                at(s, level) = m.segments > 0 ? 1 : 0;
+                continue;
+            }
+            double sum = 0;
+            for (Symbol c : sums.successor(s, level)) sum += at(c, level + 1);
+            at(s, level) = sum;
+        }
+    double total = 0;
+    for (Symbol s : sums.axiom()) total += at(s, 0);
+    return total;
+}
+
+double dotRadiusWithin(const SubtreeSummaries& sums, double scale, double dotRadius,
+                       double strokeBudget, double largestDotRadius) {
+    while (dotRadius < largestDotRadius &&
+           summarisedStrokeCount(sums, scale, dotRadius) > strokeBudget)
+        dotRadius = std::min(dotRadius * 1.25, largestDotRadius);
+    return dotRadius;
 }
 
 }  // namespace graftal

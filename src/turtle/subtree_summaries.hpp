@@ -39,11 +39,11 @@ class SubtreeSummaries {
     // false) for parameters, random choices, conditions, context, tropism or polygons, and
     // when the table (symbols x (steps + 1) motions) would take more than half of
     // `memoryLimit` bytes.
-    SubtreeSummaries(const Model& model, int steps,
-                     std::size_t memoryLimit = std::size_t(2) << 30);
+    SubtreeSummaries(const Model& model, int steps, std::size_t memoryLimit = std::size_t(2) << 30);
 
     bool available() const { return available_; }
     int steps() const { return steps_; }
+    std::size_t symbolCount() const { return symbolCount_; }
     std::span<const Symbol> axiom() const { return axiom_; }
 
     // What a module `symbol` of string `level` derives by the last step.
@@ -87,5 +87,17 @@ StreamedMeasure measureSummarised(const Model& model, const SubtreeSummaries& su
 // goes to `drawing` as one segment from its start to its end.
 void drawSummarised(const Model& model, const SubtreeSummaries& summaries, double scale,
                     double dotRadius, StreamedDrawing& drawing);
+
+// How many segments drawSummarised would hand over with these `scale` and `dotRadius`
+// (at most; segments the turtle skips, such as zero widths, are counted), from the
+// summaries alone: one sum per (symbol, string), not a walk of the derivation.
+double summarisedStrokeCount(const SubtreeSummaries& summaries, double scale, double dotRadius);
+
+// The smallest dot radius from `dotRadius` up (in steps of a quarter) at which
+// drawSummarised hands over at most `strokeBudget` segments, but no more than
+// `largestDotRadius`: a path that covers its picture many times over (a curve of dimension
+// 2) would otherwise give many strokes per pixel, each darkening pixels already drawn.
+double dotRadiusWithin(const SubtreeSummaries& summaries, double scale, double dotRadius,
+                       double strokeBudget, double largestDotRadius);
 
 }  // namespace graftal
