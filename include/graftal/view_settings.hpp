@@ -56,4 +56,15 @@ struct ViewSettings {
 
 std::ostream& operator<<(std::ostream& os, const ViewSettings& v);
 
+// What ! (narrower) and # (wider) do to a width: subtract or add cpfg's line width increment
+// when the view gives one, else multiply or divide by the width factor. Never below zero.
+inline float changedWidth(const ViewSettings& v, float width, bool wider) {
+    if (v.widthIncrement) {
+        double w = width + (wider ? *v.widthIncrement : -*v.widthIncrement);
+        return static_cast<float>(w > 0 ? w : 0);
+    }
+    return wider ? width / static_cast<float>(v.widthFactor)
+                 : width * static_cast<float>(v.widthFactor);
+}
+
 }  // namespace graftal

@@ -2,6 +2,7 @@
 // 2D scenes become line art; 3D scenes become ray-traced PNGs and meshes, or line art
 // seen from a --view.
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "commands.hpp"
@@ -58,6 +59,17 @@ RaytraceOptions raytraceOptions(const ViewSettings& v, const RenderCommandOption
     r.camera.viewpoint = out.viewpoint ? out.viewpoint : v.viewpoint;
     r.camera.target = out.target ? out.target : v.viewReferencePoint;
     if (auto up = out.up ? out.up : v.upVector) r.camera.up = *up;
+    if (v.twistDegrees != 0 && !out.up) {
+        // cpfg's twist turns the camera about its viewing direction: 45 degrees turns the up
+        // vector (0,1,0) of a camera looking along -z to (-0.71,0.71,0), as cpfg writes it.
+        Vec3 d{0, 0, -1};
+        if (r.camera.viewpoint && r.camera.target)
+            d = normalizedOr(*r.camera.target - *r.camera.viewpoint, d);
+        double a = v.twistDegrees * 3.14159265358979323846 / 180.0;
+        const Vec3& u = r.camera.up;
+        r.camera.up =
+            u * std::cos(a) - cross(d, u) * std::sin(a) + d * (dot(d, u) * (1 - std::cos(a)));
+    }
     if (auto fov = out.fieldOfView ? out.fieldOfView : v.fieldOfView) r.camera.fieldOfView = *fov;
     r.camera.orthographic = v.parallelProjection;
     if (auto light = out.light ? out.light : v.lightDirection) r.lighting.sunDirection = *light;
@@ -123,8 +135,8 @@ int runRender(const InputOptions& in, const RenderCommandOptions& out) {
         }
     }
     Derived d = deriveLoaded(std::move(l), in);
-    Scene scene =
-        interpret(d.model, applyHomomorphism(d.model.lsystem, d.modules, derivationOptions(in, d.model)));
+    Scene scene = interpret(
+        d.model, applyHomomorphism(d.model.lsystem, d.modules, derivationOptions(in, d.model)));
     if (int n = out.spline.value_or(d.model.view.splineSubdivisions); n > 0)
         scene = smoothSegments(scene, n);
     if (!d.model.view.colorMap.empty()) {
