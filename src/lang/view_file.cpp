@@ -109,18 +109,18 @@ class ViewFileReader {
                                "'" + name + ":' is read but not drawn: " + known->setting);
                 return;
             case Kind::Number: {
-                auto d = number(value, known->setting);
+                auto d = number(value, known->cpfgName);
                 if (d) send(known->setting, *d, value);
                 return;
             }
             case Kind::Twist: {
                 // cpfg gives the twist in tenths of a degree.
-                auto d = number(value, known->setting);
+                auto d = number(value, known->cpfgName);
                 if (d) send(known->setting, *d / 10, value);
                 return;
             }
             case Kind::Vector: {
-                auto v = vector(value, known->setting);
+                auto v = vector(value, known->cpfgName);
                 if (v) send(known->setting, *v, value);
                 return;
             }
