@@ -97,7 +97,7 @@ TEST(ViewFile, ABadValueIsAnErrorAtItsColumnNamingTheSetting) {
     TempDir dir;
     ParseResult r = loadWithView(dir, kPlant, "angle increment: 30\ninitial line width: thick\n");
     ASSERT_EQ(r.errors().size(), 1u) << messages(r.diagnostics);
-    const Diagnostic& e = r.errors()[0];
+    const Diagnostic e = r.errors()[0];
     EXPECT_EQ(e.location.file, (dir.path() / "m.v").string());
     EXPECT_EQ(e.location.line, 2);
     EXPECT_EQ(e.location.column, 21);
