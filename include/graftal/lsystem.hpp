@@ -98,6 +98,9 @@ std::ostream& operator<<(std::ostream& os, const LSystem& ls);
 struct ParseOptions {
     std::string fileName;                        // used in locations
     std::map<std::string, std::string> defines;  // -D NAME=VALUE; wins over #define
+    // A cpfg view file (.v) read after the .l (loadModel only). Its settings win over the
+    // same settings in the .l, as cpfg reads view settings only from the view file.
+    std::string viewFile;
 };
 
 // The grammar of .l text, for programs that only rewrite: parse(text, options) (model.hpp)

@@ -40,8 +40,10 @@ struct ParseResult {
 // Parses .l text (cpfg L-system files and pfg data files). Never throws for bad input.
 ParseResult parse(std::string_view text, const ParseOptions& options);
 
-// Reads and parses a file (ParseOptions::fileName defaults to the path). A file that cannot
-// be read is a diagnostic at line 0, not an exception.
+// Reads and parses a file (ParseOptions::fileName defaults to the path), then the view file
+// ParseOptions::viewFile names, if any. `path` may be a model folder as vlab lays them out:
+// its one .l file is read, with its one .v file unless a view file is named. A file that
+// cannot be read is a diagnostic at line 0, not an exception.
 ParseResult loadModel(const std::filesystem::path& path, ParseOptions options = {});
 
 }  // namespace graftal

@@ -24,21 +24,30 @@ struct SurfaceDeclaration {
 };
 
 struct ViewSettings {
-    double angleDegrees = 90;                    // δ, the turn of + and -
-    double stepLength = 1;                       // length of F and f
-    double initialHeading = 0;                   // degrees counter-clockwise from up (+y)
-    double scaleFactor = 100;                    // pfg's picture size in percent of the window
-    bool clockwisePlus = false;                  // pfg data files: + turns right on screen
-    double initialWidth = 0.1;                   // stem diameter before any ! or #, in model units
-    double widthFactor = 0.7;                    // ! multiplies the width by this, # divides by it
+    double angleDegrees = 90;    // δ, the turn of + and -
+    double stepLength = 1;       // length of F and f
+    double initialHeading = 0;   // degrees counter-clockwise from up (+y)
+    double scaleFactor = 100;    // pfg's picture size in percent of the window
+    bool clockwisePlus = false;  // pfg data files: + turns right on screen
+    double initialWidth = 0.1;   // stem diameter before any ! or #, in model units
+    double widthFactor = 0.7;    // ! multiplies the width by this, # divides by it
+    // cpfg's "line width increment": when set, ! subtracts it and # adds it (no factor).
+    std::optional<double> widthIncrement;
+    int initialColor = 0;                        // the colour index before any ; or ,
+    int colorIncrement = 1;                      // what ; adds and , subtracts
     LineStyle lineStyle = LineStyle::Cylinders;  // how 3D outputs draw segments
     // Tropism (LSFP ch. 3.1): after each segment H turns toward `tropism` by e·|H × T|.
     std::optional<Vec3> tropism;
     double elasticity = 0;
+    // Torque (cpfg's "torque:"): before each segment the turtle rolls about H so that U
+    // turns toward `torque` by e·|U × T|.
+    std::optional<Vec3> torque;
+    double torqueElasticity = 0;
     // Camera and light for pictures of 3D scenes (cpfg's view-file names).
     std::optional<Vec3> viewpoint, viewReferencePoint, upVector, lightDirection;
     std::optional<double> fieldOfView;  // degrees
     bool parallelProjection = false;
+    double twistDegrees = 0;  // turns the camera about its viewing direction
     std::optional<Rgb> background;
     std::string colorMap;        // a cpfg .map file, relative to the L-system file
     int splineSubdivisions = 0;  // > 0: draw turtle paths as B-splines (LSFP Fig 2.10)
@@ -46,5 +55,16 @@ struct ViewSettings {
 };
 
 std::ostream& operator<<(std::ostream& os, const ViewSettings& v);
+
+// What ! (narrower) and # (wider) do to a width: subtract or add cpfg's line width increment
+// when the view gives one, else multiply or divide by the width factor. Never below zero.
+inline float changedWidth(const ViewSettings& v, float width, bool wider) {
+    if (v.widthIncrement) {
+        double w = width + (wider ? *v.widthIncrement : -*v.widthIncrement);
+        return static_cast<float>(w > 0 ? w : 0);
+    }
+    return wider ? width / static_cast<float>(v.widthFactor)
+                 : width * static_cast<float>(v.widthFactor);
+}
 
 }  // namespace graftal

@@ -68,6 +68,7 @@ Loaded loadInput(const InputOptions& in) {
                          ": the derivation length must be 0 or more");
     ParseOptions po;
     po.defines = in.defines;
+    po.viewFile = in.viewFile;
     ParseResult parsed = loadModel(in.file, po);
     if (!parsed.ok()) throw Error(parsed.errors());
     if (!in.quiet) printWarnings(parsed);

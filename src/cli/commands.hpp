@@ -18,7 +18,8 @@ namespace graftal::cli {
 
 struct InputOptions {
     std::string file;
-    std::optional<int> steps;                    // -n
+    std::string viewFile;      // cpfg view file (.v), the second positional argument
+    std::optional<int> steps;  // -n
     std::map<std::string, std::string> defines;  // -D NAME=VALUE
     std::optional<std::uint64_t> seed;
     std::size_t memoryLimit = std::size_t(2) << 30;

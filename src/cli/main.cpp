@@ -10,7 +10,9 @@
 namespace {
 
 void addInputOptions(CLI::App& cmd, graftal::cli::InputOptions& in, std::string& memoryLimit) {
-    cmd.add_option("file", in.file, "L-system file (.l)")->required();
+    cmd.add_option("file", in.file, "L-system file (.l), or a model folder with one .l and .v")
+        ->required();
+    cmd.add_option("view", in.viewFile, "cpfg view file (.v); its settings win over the .l's");
     cmd.add_option("-n,--steps", in.steps, "derivation length (overrides the file)");
     cmd.add_option(
            "-D,--define",

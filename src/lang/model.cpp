@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "graftal/parser_target.hpp"
+#include "graftal/view_file.hpp"
 #include "parser.hpp"
 #include "source_text.hpp"
 
@@ -93,22 +94,78 @@ ParseResult parse(std::string_view text, const ParseOptions& options) {
     return result;
 }
 
-ParseResult loadModel(const std::filesystem::path& path, ParseOptions options) {
-    if (options.fileName.empty()) options.fileName = path.string();
+namespace {
+
+bool readWholeFile(const std::filesystem::path& path, std::string& text) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) return false;
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return false;
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    text = ss.str();
+    return true;
+}
+
+// The files in `folder` whose names end with `extension`, sorted.
+std::vector<std::filesystem::path> filesEndingWith(const std::filesystem::path& folder,
+                                                   const std::string& extension) {
+    std::vector<std::filesystem::path> found;
+    std::error_code ec;
+    for (const auto& e : std::filesystem::directory_iterator(folder, ec))
+        if (e.is_regular_file(ec) && e.path().extension() == extension) found.push_back(e.path());
+    std::sort(found.begin(), found.end());
+    return found;
+}
+
+}  // namespace
+
+ParseResult loadModel(const std::filesystem::path& given, ParseOptions options) {
+    std::filesystem::path path = given;
     auto failure = [&](const std::string& message) {
         ParseResult r;
-        r.model.lsystem.name = r.model.lsystem.file = options.fileName;
+        r.model.lsystem.name = r.model.lsystem.file = path.string();
         r.diagnostics.push_back({Severity::Error, SourceLocation{path.string(), 0, 0}, message});
         return r;
     };
     std::error_code ec;
-    if (std::filesystem::is_directory(path, ec))
-        return failure("is a directory, expected an L-system file");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return failure("cannot open the file (does it exist?)");
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return parse(ss.str(), options);
+    if (std::filesystem::is_directory(path, ec)) {
+        // A model folder: its one L-system, and its one view file unless one is named.
+        auto ls = filesEndingWith(path, ".l");
+        if (ls.size() != 1)
+            return failure(ls.empty() ? "is a folder with no .l file, expected an L-system file"
+                                      : "is a folder with " + std::to_string(ls.size()) +
+                                            " .l files; name the one to read");
+        auto vs = filesEndingWith(path, ".v");
+        if (options.viewFile.empty() && vs.size() == 1) options.viewFile = vs[0].string();
+        if (options.viewFile.empty() && vs.size() > 1)
+            return failure("is a folder with " + std::to_string(vs.size()) +
+                           " .v files; name the L-system and the view file to read");
+        path = ls[0];
+        if (options.fileName.empty() || options.fileName == given.string())
+            options.fileName = path.string();
+    }
+    if (options.fileName.empty()) options.fileName = path.string();
+    std::string text;
+    if (!readWholeFile(path, text))
+        return failure(std::filesystem::is_directory(path, ec)
+                           ? "is a directory, expected an L-system file"
+                           : "cannot open the file (does it exist?)");
+    ParseResult result = parse(text, options);
+    if (options.viewFile.empty()) return result;
+    std::string viewText;
+    if (!readWholeFile(options.viewFile, viewText)) {
+        result.diagnostics.push_back({Severity::Error, SourceLocation{options.viewFile, 0, 0},
+                                      "cannot open the view file (does it exist?)"});
+        return result;
+    }
+    DiagnosticList diags;
+    ModelBuilder builder(diags);
+    builder.model() = std::move(result.model);
+    parseViewFileInto(viewText, options.viewFile, builder, diags);
+    result.model = std::move(builder.model());
+    for (const auto& d : diags.items()) result.diagnostics.push_back(d);
+    return result;
 }
 
 std::ostream& operator<<(std::ostream& os, const Model& model) {

@@ -68,6 +68,12 @@ const std::vector<std::string>& viewSettingNames() {
         "color map",
         "colour map",
         "surface",
+        "line width increment",
+        "initial color",
+        "color increment",
+        "twist",
+        "torque direction",
+        "torque elasticity",
     };
     return names;
 }
@@ -78,7 +84,7 @@ std::string applyViewSetting(ViewSettings& view, const ViewSetting& setting) {
     const Vec3* vector = std::get_if<Vec3>(&setting.value);
     const std::string* text = std::get_if<std::string>(&setting.value);
     if (kw == "viewpoint" || kw == "view reference point" || kw == "up vector" ||
-        kw == "light direction" || kw == "tropism direction") {
+        kw == "light direction" || kw == "tropism direction" || kw == "torque direction") {
         if (!vector) return "'" + kw + ":' expects three numbers x, y, z";
         const Vec3& v = *vector;
         if (kw == "viewpoint") {
@@ -93,8 +99,9 @@ std::string applyViewSetting(ViewSettings& view, const ViewSetting& setting) {
             view.lightDirection = v;
         } else {
             double n = std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
-            if (n == 0) return "the tropism direction must not be zero";
-            view.tropism = Vec3{v.x / n, v.y / n, v.z / n};
+            if (n == 0) return "the " + kw + " must not be zero";
+            (kw == "torque direction" ? view.torque : view.tropism) =
+                Vec3{v.x / n, v.y / n, v.z / n};
         }
         return "";
     }
@@ -165,6 +172,17 @@ std::string applyViewSetting(ViewSettings& view, const ViewSetting& setting) {
     } else if (kw == "width factor") {
         if (d <= 0 || d >= 1) return "width factor must be between 0 and 1 (what ! multiplies by)";
         view.widthFactor = d;
+    } else if (kw == "line width increment") {
+        if (d < 0) return "line width increment must not be negative (what # adds and ! subtracts)";
+        view.widthIncrement = d;
+    } else if (kw == "initial color" || kw == "color increment") {
+        if (d < 0 || d > 65535 || d != std::floor(d))
+            return kw + " is a colour-map index, a whole number from 0 to 65535";
+        (kw == "initial color" ? view.initialColor : view.colorIncrement) = static_cast<int>(d);
+    } else if (kw == "twist") {
+        view.twistDegrees = d;
+    } else if (kw == "torque elasticity") {
+        view.torqueElasticity = d;
     }
     return "";
 }

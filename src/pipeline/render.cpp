@@ -1,6 +1,7 @@
 // render(): a model to a picture or a 3D file. 2D scenes become line art; 3D scenes become
 // ray-traced PNGs and meshes, or line art seen from a view direction.
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "graftal/bspline.hpp"
@@ -64,6 +65,17 @@ RaytraceOptions raytraceOptions(const ViewSettings& v, const RenderRequest& requ
     r.camera.viewpoint = request.viewpoint ? request.viewpoint : v.viewpoint;
     r.camera.target = request.target ? request.target : v.viewReferencePoint;
     if (auto up = request.up ? request.up : v.upVector) r.camera.up = *up;
+    if (v.twistDegrees != 0 && !request.up) {
+        // cpfg's twist turns the camera about its viewing direction: 45 degrees turns the up
+        // vector (0,1,0) of a camera looking along -z to (-0.71,0.71,0), as cpfg writes it.
+        Vec3 d{0, 0, -1};
+        if (r.camera.viewpoint && r.camera.target)
+            d = normalizedOr(*r.camera.target - *r.camera.viewpoint, d);
+        const double a = v.twistDegrees * 3.14159265358979323846 / 180.0;
+        const Vec3 u = r.camera.up;
+        r.camera.up =
+            u * std::cos(a) - cross(d, u) * std::sin(a) + d * (dot(d, u) * (1 - std::cos(a)));
+    }
     if (auto fov = request.fieldOfView ? request.fieldOfView : v.fieldOfView)
         r.camera.fieldOfView = *fov;
     r.camera.orthographic = v.parallelProjection;

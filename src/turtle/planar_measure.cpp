@@ -96,7 +96,7 @@ class PlanarWalk {
         turnSign_ = v.clockwisePlus ? -1.0 : 1.0;
         sinLeft_ = turnSign_ * std::sin(delta);
         sinRight_ = -turnSign_ * std::sin(delta);
-        widthFactor_ = static_cast<float>(v.widthFactor);
+        view_ = &v;
         Frame& t = state_.turtle;
         double h = v.initialHeading * kPi / 180.0;
         rotateFrame(t, std::cos(h), std::sin(h));
@@ -122,7 +122,8 @@ class PlanarWalk {
 
     std::array<TurtleOp, kMaxSymbols> ops_;
     double step_ = 1, cos_ = 1, sinLeft_ = 0, sinRight_ = 0, turnSign_ = 1;
-    float widthFactor_ = 1, baseWidth_ = 1;
+    const ViewSettings* view_ = nullptr;
+    float baseWidth_ = 1;
     WalkState state_;
     std::vector<Frame> stack_;  // frames [0, depth_) are saved; the rest is room
     std::size_t depth_ = 0;
@@ -253,8 +254,7 @@ std::size_t PlanarWalk::fastRun(const ModuleString& modules, std::size_t i, std:
             case TurtleOp::WidthUp:
                 if constexpr (kParams)
                     if (!modules.params(i).empty()) goto stop;
-                t.width =
-                    op == TurtleOp::WidthDown ? t.width * widthFactor_ : t.width / widthFactor_;
+                t.width = changedWidth(*view_, t.width, op == TurtleOp::WidthUp);
                 t.weight = weightOf(t.width);
                 break;
             case TurtleOp::None:
@@ -366,11 +366,13 @@ bool PlanarWalk::slowModule(TurtleOp op, std::span<const double> args) {
             polygons_.pop_back();
             return true;
         case TurtleOp::WidthDown:
-            t.width = args.empty() ? t.width * widthFactor_ : static_cast<float>(args[0]);
+            t.width =
+                args.empty() ? changedWidth(*view_, t.width, false) : static_cast<float>(args[0]);
             t.weight = weightOf(t.width);
             return true;
         case TurtleOp::WidthUp:
-            t.width = args.empty() ? t.width / widthFactor_ : static_cast<float>(args[0]);
+            t.width =
+                args.empty() ? changedWidth(*view_, t.width, true) : static_cast<float>(args[0]);
             t.weight = weightOf(t.width);
             return true;
         case TurtleOp::None:

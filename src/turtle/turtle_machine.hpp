@@ -180,6 +180,7 @@ class TurtleMachine {
         double h = v.initialHeading * kPi / 180.0;
         rotatePair(state_.heading, state_.left, std::cos(h), std::sin(h));
         state_.width = static_cast<float>(v.initialWidth);
+        state_.color = colorIndex(v.initialColor);
         if (v.tropism && v.elasticity != 0) {
             tropism_ = *v.tropism;
             elasticity_ = v.elasticity;
@@ -358,22 +359,22 @@ class TurtleMachine {
                 polygonOpenedAt_.pop_back();
                 break;
             case TurtleOp::WidthDown:
-                state_.width = args.empty() ? state_.width * static_cast<float>(view_.widthFactor)
+                state_.width = args.empty() ? changedWidth(view_, state_.width, false)
                                             : static_cast<float>(args[0]);
                 break;
             case TurtleOp::WidthUp:
-                state_.width = args.empty() ? state_.width / static_cast<float>(view_.widthFactor)
+                state_.width = args.empty() ? changedWidth(view_, state_.width, true)
                                             : static_cast<float>(args[0]);
                 break;
             case TurtleOp::ColorNext:
-                state_.color = args.empty() ? static_cast<std::uint16_t>(state_.color + 1)
+                state_.color = args.empty() ? colorIndex(state_.color + view_.colorIncrement)
                                             : colorIndex(args[0]);
                 break;
             case TurtleOp::ColorPrevious:
                 if (!args.empty())
                     state_.color = colorIndex(args[0]);
-                else if (state_.color > 0)
-                    --state_.color;
+                else
+                    state_.color = colorIndex(state_.color - view_.colorIncrement);
                 break;
             case TurtleOp::Surface:
                 placeSurface(symbol, args);

@@ -1,0 +1,276 @@
+// Reading cpfg's view file. Each line is "name: value"; cpfg matches the name's start, so
+// "initial color:" and "initial colour:" both work, and a number may be followed by a unit
+// word ("initial line width: 3 pixels"). The values are handed to the target under the
+// names the .l file uses (viewSettingNames()).
+#include "graftal/view_file.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <optional>
+#include <vector>
+
+namespace graftal {
+
+namespace {
+
+enum class Kind { Number, Vector, Text, Twist, Tropism, Torque, Ignored };
+
+struct ViewLine {
+    const char* cpfgName;  // lower case, without the ':'
+    const char* setting;   // the ViewSetting name (for Ignored: why it is not drawn)
+    Kind kind;
+};
+
+// The lines of a cpfg view file graftal reads, longest names first where one starts
+// another ("line width increment" before "line width").
+const std::vector<ViewLine>& viewLines() {
+    static const std::vector<ViewLine> lines = {
+        {"angle increment", "angle increment", Kind::Number},
+        {"angle factor", "angle factor", Kind::Number},
+        {"initial line width", "line width", Kind::Number},
+        {"line width increment", "line width increment", Kind::Number},
+        {"initial color", "initial color", Kind::Number},
+        {"initial colour", "initial color", Kind::Number},
+        {"color increment", "color increment", Kind::Number},
+        {"colour increment", "color increment", Kind::Number},
+        {"viewpoint", "viewpoint", Kind::Vector},
+        {"view reference point", "view reference point", Kind::Vector},
+        {"up vector", "up vector", Kind::Vector},
+        {"projection", "projection", Kind::Text},
+        {"twist", "twist", Kind::Twist},
+        {"scale factor", "scale factor", Kind::Number},
+        {"tropism direction", "tropism direction", Kind::Vector},
+        {"initial elasticity", "initial elasticity", Kind::Number},
+        {"elasticity increment", "changing elasticities are not drawn yet", Kind::Ignored},
+        {"tropism", "tropism", Kind::Tropism},
+        {"torque", "torque", Kind::Torque},
+        {"surface", "surface", Kind::Text},
+        {"box", "the box is recomputed from the geometry", Kind::Ignored},
+        {"render mode", "graftal chooses how to draw by the output format", Kind::Ignored},
+        {"light", "lights are not read from view files yet", Kind::Ignored},
+        {"material", "materials are not read from view files yet", Kind::Ignored},
+        {"shade mode", "graftal chooses the shading by the output format", Kind::Ignored},
+        {"z buffer", "graftal chooses how to draw by the output format", Kind::Ignored},
+        {"cylinder sides", "use --tube-sides", Kind::Ignored},
+        {"contact point", "contact points are not read yet", Kind::Ignored},
+        {"end point", "end points are not read yet", Kind::Ignored},
+        {"heading", "headings are not read yet", Kind::Ignored},
+        {"up", "up vectors of surfaces are not read yet", Kind::Ignored},
+        {"size", "sizes of surfaces are not read yet", Kind::Ignored},
+        {"front distance", "clipping planes are not read", Kind::Ignored},
+        {"back distance", "clipping planes are not read", Kind::Ignored},
+        {"line style", "line style", Kind::Text},
+    };
+    return lines;
+}
+
+std::string lower(std::string_view s) {
+    std::string out(s);
+    for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return out;
+}
+
+bool isBlank(char c) {
+    return c == ' ' || c == '\t' || c == '\r';
+}
+
+class ViewFileReader {
+  public:
+    ViewFileReader(const std::string& file, ParserTarget& target, DiagnosticList& diags)
+        : file_(file), target_(target), diags_(diags) {}
+
+    void line(std::string_view text, int lineNumber) {
+        number_ = lineNumber;
+        text_ = text;
+        std::size_t colon = text.find(':');
+        std::size_t first = 0;
+        while (first < text.size() && isBlank(text[first])) ++first;
+        if (first == text.size()) return;
+        if (text.substr(first).starts_with("/*") || text.substr(first).starts_with("//")) return;
+        std::string name = colon == std::string_view::npos
+                               ? std::string()
+                               : lower(text.substr(first, colon - first));
+        while (!name.empty() && isBlank(name.back())) name.pop_back();
+        const ViewLine* known = nullptr;
+        for (const auto& l : viewLines())
+            if (name == l.cpfgName) known = &l;
+        if (!known) {
+            diags_.warning(at(first, text.size()),
+                           "unknown view-file line '" + std::string(trim(text)) + "', ignored");
+            return;
+        }
+        std::size_t value = colon + 1;
+        while (value < text.size() && isBlank(text[value])) ++value;
+        switch (known->kind) {
+            case Kind::Ignored:
+                diags_.warning(at(first, colon),
+                               "'" + name + ":' is read but not drawn: " + known->setting);
+                return;
+            case Kind::Number: {
+                auto d = number(value, known->cpfgName);
+                if (d) send(known->setting, *d, value);
+                return;
+            }
+            case Kind::Twist: {
+                // cpfg gives the twist in tenths of a degree.
+                auto d = number(value, known->cpfgName);
+                if (d) send(known->setting, *d / 10, value);
+                return;
+            }
+            case Kind::Vector: {
+                auto v = vector(value, known->cpfgName);
+                if (v) send(known->setting, *v, value);
+                return;
+            }
+            case Kind::Text:
+                send(known->setting, std::string(trim(text.substr(value))), value);
+                return;
+            case Kind::Tropism:
+            case Kind::Torque:
+                fields(value, known->setting);
+                return;
+        }
+    }
+
+  private:
+    static std::string_view trim(std::string_view s) {
+        while (!s.empty() && isBlank(s.front())) s.remove_prefix(1);
+        while (!s.empty() && isBlank(s.back())) s.remove_suffix(1);
+        return s;
+    }
+
+    SourceLocation at(std::size_t from, std::size_t to) const {
+        SourceLocation loc{file_, number_, static_cast<int>(from) + 1};
+        loc.endLine = number_;
+        loc.endColumn = static_cast<int>(std::max(to, from + 1)) + 1;
+        return loc;
+    }
+
+    std::size_t tokenEnd(std::size_t from) const {
+        std::size_t e = from;
+        while (e < text_.size() && !isBlank(text_[e]) && text_[e] != ',') ++e;
+        return e;
+    }
+
+    // A number at `from`; a unit word after it is allowed (cpfg's "3 pixels").
+    std::optional<double> numberAt(std::size_t& from, const std::string& setting,
+                                   const char* expected) {
+        while (from < text_.size() && isBlank(text_[from])) ++from;
+        std::size_t end = tokenEnd(from);
+        std::string token(text_.substr(from, end - from));
+        char* stop = nullptr;
+        double d = token.empty() ? 0 : std::strtod(token.c_str(), &stop);
+        if (token.empty() || *stop || !std::isfinite(d)) {
+            diags_.error(at(from, end),
+                         "'" + setting + "': expected " + expected +
+                             (token.empty() ? ", found nothing" : ", found '" + token + "'"));
+            return std::nullopt;
+        }
+        from = end;
+        return d;
+    }
+
+    std::optional<double> number(std::size_t from, const std::string& setting) {
+        return numberAt(from, setting, "a number");
+    }
+
+    // "x,y,z" or "x y z".
+    std::optional<Vec3> vectorAt(std::size_t& from, const std::string& setting) {
+        double v[3];
+        for (int k = 0; k < 3; ++k) {
+            if (k > 0) {
+                while (from < text_.size() && isBlank(text_[from])) ++from;
+                if (from < text_.size() && text_[from] == ',') ++from;
+            }
+            auto d = numberAt(from, setting, "three numbers x, y, z");
+            if (!d) return std::nullopt;
+            v[k] = *d;
+        }
+        return Vec3{v[0], v[1], v[2]};
+    }
+
+    std::optional<Vec3> vector(std::size_t from, const std::string& setting) {
+        return vectorAt(from, setting);
+    }
+
+    // cpfg's new-style tropism and torque lines: fields "T: x,y,z", "E: e" and for tropisms
+    // "A:", "I:", "S:" (angle, intensity, elasticity step), in any order.
+    void fields(std::size_t from, const std::string& setting) {
+        std::optional<Vec3> direction;
+        std::optional<double> elasticity, step;
+        if (setting == "tropism" && ++tropisms_ > 1) {
+            diags_.warning(at(from, text_.size()),
+                           "only the first 'tropism:' line is drawn; this one is ignored");
+            return;
+        }
+        std::size_t start = from;
+        while (from < text_.size()) {
+            while (from < text_.size() && (isBlank(text_[from]) || text_[from] == ',')) ++from;
+            if (from >= text_.size()) break;
+            char field = static_cast<char>(std::toupper(static_cast<unsigned char>(text_[from])));
+            std::size_t colon = from + 1;
+            while (colon < text_.size() && isBlank(text_[colon])) ++colon;
+            if (colon >= text_.size() || text_[colon] != ':' ||
+                std::string("TAIES").find(field) == std::string::npos) {
+                diags_.error(at(from, tokenEnd(from)),
+                             "'" + setting + ":' expects fields T: x,y,z  E: e" +
+                                 (setting == "tropism" ? "  (and A:, I:, S:)" : ""));
+                return;
+            }
+            from = colon + 1;
+            if (field == 'T') {
+                direction = vectorAt(from, setting);
+                if (!direction) return;
+            } else {
+                auto d = numberAt(from, setting, "a number after the field name");
+                if (!d) return;
+                if (field == 'E') elasticity = d;
+                if (field == 'S') step = d;
+            }
+        }
+        if (!direction) {
+            diags_.error(at(start, text_.size()), "'" + setting + ":' needs a direction T: x,y,z");
+            return;
+        }
+        send(setting + " direction", *direction, start);
+        send(setting == "tropism" ? std::string("initial elasticity") : setting + " elasticity",
+             elasticity.value_or(0), start);
+        if (step && *step != 0)
+            diags_.warning(at(start, text_.size()),
+                           "'" + setting + ":' S: (elasticity step) is read but not drawn yet");
+    }
+
+    void send(const std::string& name, std::variant<double, Vec3, std::string> value,
+              std::size_t from) {
+        std::size_t end = text_.size();
+        while (end > from && isBlank(text_[end - 1])) --end;
+        target_.viewSetting(ViewSetting{name, std::move(value), at(from, end)});
+    }
+
+    std::string file_;
+    ParserTarget& target_;
+    DiagnosticList& diags_;
+    std::string_view text_;
+    int number_ = 0;
+    int tropisms_ = 0;
+};
+
+}  // namespace
+
+void parseViewFileInto(std::string_view text, const std::string& fileName, ParserTarget& target,
+                       DiagnosticList& diagnostics) {
+    ViewFileReader reader(fileName, target, diagnostics);
+    int number = 0;
+    std::size_t at = 0;
+    while (at <= text.size()) {
+        std::size_t end = text.find('\n', at);
+        if (end == std::string_view::npos) end = text.size();
+        ++number;
+        if (end > at || end < text.size()) reader.line(text.substr(at, end - at), number);
+        at = end + 1;
+    }
+}
+
+}  // namespace graftal
