@@ -6,6 +6,8 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <string_view>
+#include <vector>
 
 #include "graftal/lsystem.hpp"
 #include "graftal/module_string.hpp"
@@ -22,6 +24,8 @@ struct DerivationOptions {
     Environment* environment = nullptr;
     // Called after every step with the step number and the string's size (for progress).
     std::function<void(int step, std::size_t modules)> progress;
+    // Where printf writes (cpfg writes to standard error). Empty: the text is dropped.
+    std::function<void(std::string_view)> print;
 };
 
 class Derivation {
@@ -37,6 +41,12 @@ class Derivation {
     // expression fails; the current string is then left as it was.
     void step();
     void run(int steps);
+    // Runs the End: block, once, after the last step (not when no step was done, as cpfg).
+    // derive() calls it; callers that drive step() themselves call it when done.
+    void finish();
+    // The L-system's variables (LSystem::stateNames): Q, Z, then globals and the
+    // productions' own variables.
+    const std::vector<double>& state() const { return state_; }
 
     int stepsDone() const { return steps_; }
     const ModuleString& current() const { return *current_; }
@@ -54,7 +64,9 @@ class Derivation {
     std::unique_ptr<Environment> ownedEnvironment_;
     Environment* environment_ = nullptr;
     bool queries_ = false;
+    bool finished_ = false;
     int steps_ = 0;
+    std::vector<double> state_;
 };
 
 // Derives `steps` steps from the axiom (steps < 0: the file's derivation length).

@@ -19,6 +19,10 @@ namespace graftal {
 struct EvalContext {
     // Returns a uniform number in [0, 1); called once per ran()/nran() evaluation.
     std::function<double()> uniform;
+    // The L-system's state (LSystem::stateNames): read by names that are not parameters.
+    const double* state = nullptr;
+    // Where printf writes (the library never prints itself). nullptr: output is dropped.
+    const std::function<void(std::string_view)>* print = nullptr;
 };
 
 class Expression {
@@ -46,6 +50,9 @@ class Expression {
         Call2,
         Ran,
         Nran,
+        Load,    // state[arg]
+        Printf,  // strings_[arg] formatted with the fn values on the stack; gives 0
+        Select,  // c ? a : b with all three on the stack
         JumpIfFalse,
         JumpIfTrue,
         Jump,
@@ -84,6 +91,10 @@ class Expression {
     bool isConstant() const { return code_.size() == 1 && code_[0].op == Op::Const; }
     bool empty() const { return code_.empty(); }
     bool usesRandom() const { return usesRandom_; }
+    // Reads the state or prints: needs an EvalContext with `state` (and `print`).
+    bool usesState() const { return usesState_; }
+    bool prints() const { return prints_; }
+    bool needsContext() const { return usesRandom_ || usesState_ || prints_; }
     const std::string& text() const { return text_; }
     const SourceLocation& location() const { return location_; }
     void print(std::ostream& os) const { os << text_; }
@@ -120,9 +131,12 @@ class Expression {
     double a_ = 0;  // the constant of the shape
     std::vector<Instr> code_;
     std::vector<double> constants_;
+    std::vector<std::string> strings_;  // printf formats, escapes resolved
     std::string text_;
     SourceLocation location_;
     bool usesRandom_ = false;
+    bool usesState_ = false;
+    bool prints_ = false;
     std::uint32_t maxStack_ = 0;
 };
 
@@ -132,12 +146,18 @@ std::ostream& operator<<(std::ostream& os, const Expression& e);
 struct ExpressionScope {
     std::vector<std::string> variables;                           // slot i is variables[i]
     const std::map<std::string, std::string>* defines = nullptr;  // NAME -> expression text
+    // Names that are state slots (LSystem::stateNames) -> slot: the globals and, in a
+    // production, its own variables.
+    const std::map<std::string, std::uint32_t>* state = nullptr;
 };
 
 // Compiles `text` (which starts at `loc`). Problems go to `diags` with exact columns; the
 // returned expression is then empty.
 Expression compileExpression(std::string_view text, const SourceLocation& loc,
                              const ExpressionScope& scope, DiagnosticList& diags);
+
+// printf's formatting of `values` (every value a double, as in cpfg).
+std::string formatPrintf(std::string_view format, std::span<const double> values);
 
 // Convenience for constant expressions (view settings, derivation length): throws Error.
 double evaluateConstant(std::string_view text, const SourceLocation& loc,

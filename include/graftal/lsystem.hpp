@@ -66,6 +66,23 @@ struct SuccessorModule {
     std::vector<Expression> args;
 };
 
+// One statement of a `{ ... }` block (cpfg's C-like statements). Variables other than a
+// production's formal parameters live in the L-system's state (LSystem::stateNames).
+struct Statement {
+    enum class Kind {
+        Assign,    // state[target] = value
+        Evaluate,  // value, for its effect (printf)
+        If,        // if (value) body else elseBody
+        While,     // while (value) body
+        DoWhile,   // do body while (value)
+    };
+    Kind kind = Kind::Evaluate;
+    std::uint32_t target = 0;
+    Expression value;
+    std::vector<Statement> body, elseBody;
+};
+using Block = std::vector<Statement>;
+
 struct Production {
     std::vector<ModulePattern> left;         // left context, in string order
     std::vector<ModulePattern> predecessor;  // strict predecessor (pfg allows several)
@@ -73,11 +90,16 @@ struct Production {
     std::optional<Expression> condition;
     std::vector<SuccessorModule> successor;  // empty for *
     std::optional<Expression> probability;
+    // `pred : { pre } condition { post } --> succ`: pre runs whenever the predecessor and
+    // context match (before the condition), post when the production is applied (before
+    // the successor's parameters are evaluated).
+    Block preBlock, postBlock;
     SourceLocation location;
     int slotCount = 0;  // formal parameters bound, in all three parts
     int table = -1;     // index into LSystem::tableNames; -1: every table
 
     bool hasContext() const { return !left.empty() || !right.empty(); }
+    bool hasBlocks() const { return !preBlock.empty() || !postBlock.empty(); }
     bool isParametric() const;
     void print(std::ostream& os, const SymbolTable& symbols) const;
 };
@@ -112,6 +134,18 @@ class LSystem {
     bool legacyPfg = false;                    // read as a pfg data file (no Lsystem: header)
     std::vector<EnvironmentLine> environment;  // `environment:` lines, in file order
     std::map<std::string, std::string> defines;
+    // State shared by blocks and expressions: slot 0 is Q (the step being performed), 1 is Z
+    // (the derivation length); then the globals (assigned in Start:, StartEach:, EndEach:
+    // or End:) and each production's own variables, which keep their value between
+    // applications. All start at 0.
+    std::vector<std::string> stateNames = {"Q", "Z"};
+    Block startBlock, startEachBlock, endEachBlock, endBlock;
+    // Axiom parameters that read the state: evaluated after Start: when a derivation begins.
+    struct DeferredArgument {
+        std::size_t module = 0, param = 0;
+        Expression value;
+    };
+    std::vector<DeferredArgument> axiomArguments;
     std::vector<Diagnostic> warnings;  // what the parser noticed but accepted
 
     // The table used by derivation step `step` (1-based); 0 when there are no tables.
@@ -120,6 +154,13 @@ class LSystem {
     bool hasContext() const;
     bool hasMultiModulePredecessor() const;
     bool isParametric() const;
+    // Whether a derivation step has effects beyond its string: a production block, or an
+    // expression that writes (printf). Such steps rewrite the modules in string order.
+    bool hasSideEffects() const;
+    bool hasGlobalBlocks() const {
+        return !startBlock.empty() || !startEachBlock.empty() || !endEachBlock.empty() ||
+               !endBlock.empty();
+    }
     // Prints the L-system back in the .l language.
     void print(std::ostream& os) const;
 };

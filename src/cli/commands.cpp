@@ -65,6 +65,12 @@ DerivationOptions derivationOptions(const InputOptions& in) {
     opts.memoryLimit = in.memoryLimit;
     opts.seed = in.seed;
     opts.threads = in.threads;
+    // printf in a model writes to standard error, as cpfg's does (standard output may
+    // carry the derived string).
+    opts.print = [](std::string_view text) {
+        endProgressLine();
+        std::cerr << text << std::flush;
+    };
     // Progress for long derivations, only where a person watches (a terminal), and only
     // once a derivation has taken more than a second.
     if (!in.quiet && ::isatty(2)) {

@@ -88,6 +88,7 @@ void renderDerivation(const LSystem& ls, int steps, const InputOptions& in,
         derivation.step();
         strings.push_back(derivation.current());
     }
+    derivation.finish();
     endProgressLine();
     RenderOptions render = out.render;
     if (!out.backgroundGiven && ls.view.background) render.background = *ls.view.background;

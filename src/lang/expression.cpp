@@ -7,6 +7,8 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <cstdio>
+#include <cstring>
 #include <set>
 
 namespace graftal {
@@ -68,7 +70,7 @@ class ExpressionCompiler {
         if (pos_ >= text_.size()) {
             fail(pos_, "expected an expression");
         } else {
-            parseOr();
+            parseTernary();
             skipSpace();
             if (!failed_ && pos_ < text_.size())
                 fail(pos_, "unexpected '" + std::string(1, text_[pos_]) +
@@ -127,6 +129,22 @@ class ExpressionCompiler {
         emit(Expression::Op::Const, static_cast<std::uint32_t>(expr_.constants_.size() - 1));
     }
 
+    // cpfg's `c ? a : b` (both branches are evaluated, as they have no side effects
+    // other than printf).
+    void parseTernary() {
+        parseOr();
+        if (!failed_ && accept("?")) {
+            parseTernary();
+            if (failed_) return;
+            if (!accept(":")) {
+                fail(pos_, "expected ':' in 'condition ? value : value'");
+                return;
+            }
+            parseTernary();
+            emit(Expression::Op::Select);
+        }
+    }
+
     void parseOr() {
         parseAnd();
         while (!failed_ && accept("||")) {
@@ -153,7 +171,9 @@ class ExpressionCompiler {
         parseAdditive();
         while (!failed_) {
             Expression::Op op;
-            if (accept("<="))
+            if (accept("<>"))
+                op = Expression::Op::Ne;
+            else if (accept("<="))
                 op = Expression::Op::Le;
             else if (accept(">="))
                 op = Expression::Op::Ge;
@@ -261,7 +281,7 @@ class ExpressionCompiler {
         char c = text_[pos_];
         if (c == '(') {
             ++pos_;
-            parseOr();
+            parseTernary();
             if (!failed_ && !accept(")")) fail(pos_, "expected ')'");
             return;
         }
@@ -315,6 +335,14 @@ class ExpressionCompiler {
         for (std::size_t i = 0; i < scope_.variables.size(); ++i) {
             if (scope_.variables[i] == name) {
                 emit(Expression::Op::Var, static_cast<std::uint32_t>(i));
+                return;
+            }
+        }
+        if (scope_.state) {
+            auto it = scope_.state->find(name);
+            if (it != scope_.state->end()) {
+                emit(Expression::Op::Load, it->second);
+                expr_.usesState_ = true;
                 return;
             }
         }
@@ -378,7 +406,9 @@ class ExpressionCompiler {
         }
         bool usesVariables = false;
         for (const auto& in : d.program.code_) usesVariables |= in.op == Expression::Op::Var;
-        if (!usesVariables && !d.program.usesRandom_) {
+        // State, arrays and printf are read or done where the expression runs.
+        if (!usesVariables && !d.program.usesRandom_ && !d.program.usesState_ &&
+            !d.program.prints_) {
             try {
                 d.value = d.program.evaluate({});
                 d.folded = true;
@@ -401,9 +431,68 @@ class ExpressionCompiler {
             expr_.code_.push_back(in);
         }
         expr_.usesRandom_ |= e.usesRandom_;
+        expr_.usesState_ |= e.usesState_;
+        expr_.prints_ |= e.prints_;
+        auto sbase = static_cast<std::uint32_t>(expr_.strings_.size());
+        expr_.strings_.insert(expr_.strings_.end(), e.strings_.begin(), e.strings_.end());
+        for (std::size_t k = expr_.code_.size() - e.code_.size(); k < expr_.code_.size(); ++k)
+            if (expr_.code_[k].op == Expression::Op::Printf) expr_.code_[k].arg += sbase;
+    }
+
+    // A "..." literal, with C's \n \t \\ \" escapes resolved.
+    bool parseString(std::string& out) {
+        skipSpace();
+        if (pos_ >= text_.size() || text_[pos_] != '"') {
+            fail(pos_, "expected a format string in double quotes");
+            return false;
+        }
+        std::size_t start = pos_++;
+        while (pos_ < text_.size() && text_[pos_] != '"') {
+            char c = text_[pos_++];
+            if (c == '\\' && pos_ < text_.size()) {
+                char e = text_[pos_++];
+                c = e == 'n' ? '\n' : e == 't' ? '\t' : e == 'r' ? '\r' : e == '0' ? '\0' : e;
+            }
+            out += c;
+        }
+        if (pos_ >= text_.size()) {
+            fail(start, "unterminated string: expected a closing '\"'");
+            return false;
+        }
+        ++pos_;
+        return true;
+    }
+
+    // printf("format", values...): prints through the EvalContext and gives 0.
+    void parsePrintf(std::size_t start) {
+        ++pos_;  // '('
+        std::string format;
+        if (!parseString(format)) return;
+        int count = 0;
+        while (accept(",")) {
+            parseTernary();
+            if (failed_) return;
+            ++count;
+        }
+        if (!accept(")")) {
+            fail(pos_, "expected ')' or ',' in the arguments of printf()");
+            return;
+        }
+        if (count > 255) {
+            fail(start, "printf() takes at most 255 values");
+            return;
+        }
+        expr_.strings_.push_back(std::move(format));
+        emit(Expression::Op::Printf, static_cast<std::uint32_t>(expr_.strings_.size() - 1),
+             static_cast<std::uint8_t>(count));
+        expr_.prints_ = true;
     }
 
     void parseCall(const std::string& name, std::size_t start) {
+        if (name == "printf") {
+            parsePrintf(start);
+            return;
+        }
         const FunctionInfo* fn = nullptr;
         for (const auto& f : kFunctions)
             if (name == f.name) fn = &f;
@@ -416,7 +505,7 @@ class ExpressionCompiler {
         skipSpace();
         if (!(pos_ < text_.size() && text_[pos_] == ')')) {
             do {
-                parseOr();
+                parseTernary();
                 if (failed_) return;
                 ++count;
             } while (accept(","));
@@ -448,7 +537,14 @@ class ExpressionCompiler {
             switch (in.op) {
                 case Expression::Op::Const:
                 case Expression::Op::Var:
+                case Expression::Op::Load:
                     ++depth;
+                    break;
+                case Expression::Op::Printf:
+                    depth += 1 - in.fn;
+                    break;
+                case Expression::Op::Select:
+                    depth -= 2;
                     break;
                 case Expression::Op::Neg:
                 case Expression::Op::Not:
@@ -548,6 +644,49 @@ static double apply2(std::uint8_t fn, double a, double b) {
             return std::max(a, b);
     }
     return 0;
+}
+
+// C's printf conversions applied to doubles: %d %i %c %o %x %u take the value as an
+// integer, %e %f %g as a double; %% is a percent sign.
+std::string formatPrintf(std::string_view format, std::span<const double> values) {
+    std::string out;
+    std::size_t next = 0;
+    for (std::size_t i = 0; i < format.size(); ++i) {
+        if (format[i] != '%') {
+            out += format[i];
+            continue;
+        }
+        std::size_t start = i++;
+        while (i < format.size() && std::strchr("-+ #0123456789.lh", format[i])) ++i;
+        if (i >= format.size()) {
+            out += format.substr(start);
+            break;
+        }
+        char conv = format[i];
+        if (conv == '%') {
+            out += '%';
+            continue;
+        }
+        std::string spec(format.substr(start, i - start));
+        std::erase_if(spec, [](char c) { return c == 'l' || c == 'h'; });
+        double v = next < values.size() ? values[next++] : 0.0;
+        char buf[512];
+        if (std::strchr("diouxXc", conv)) {
+            spec += std::strchr("di", conv) ? "lld" : conv == 'c' ? "c" : std::string("ll") + conv;
+            if (conv == 'c')
+                std::snprintf(buf, sizeof buf, spec.c_str(), static_cast<int>(v));
+            else
+                std::snprintf(buf, sizeof buf, spec.c_str(), static_cast<long long>(v));
+        } else if (std::strchr("eEfFgGaA", conv)) {
+            spec += conv;
+            std::snprintf(buf, sizeof buf, spec.c_str(), v);
+        } else {
+            out += format.substr(start, i - start + 1);
+            continue;
+        }
+        out += buf;
+    }
+    return out;
 }
 
 void Expression::findShape() {
@@ -719,6 +858,22 @@ double Expression::run(std::span<const double> slots, const EvalContext* ctx) co
                 break;
             case Op::Pop:
                 --sp;
+                break;
+            case Op::Load:
+                if (!ctx || !ctx->state)
+                    throw Error(location_, "'" + text_ + "' reads a variable where none exists");
+                st[++sp] = ctx->state[in.arg];
+                break;
+            case Op::Printf: {
+                sp -= in.fn;
+                if (ctx && ctx->print && *ctx->print)
+                    (*ctx->print)(formatPrintf(strings_[in.arg], {st + sp + 1, in.fn}));
+                st[++sp] = 0;
+                break;
+            }
+            case Op::Select:
+                st[sp - 2] = st[sp - 2] != 0 ? st[sp - 1] : st[sp];
+                sp -= 2;
                 break;
         }
     }

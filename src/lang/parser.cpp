@@ -6,6 +6,7 @@
 #include <cctype>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <sstream>
 
@@ -69,6 +70,10 @@ const std::vector<std::string> kKeywords = {
     "colour map",
     "surface",
     "spline subdivisions",
+    "start",
+    "starteach",
+    "endeach",
+    "end",
 };
 
 // `-->` wins; then the book's `→`; then `->` (not the `<-` `>` of a context like `<->`).
@@ -115,6 +120,7 @@ LSystem Parser::run() {
     for (const auto& [k, v] : options_.defines) ls_.defines[k] = v;
     ls_.legacyPfg = !sawLsystemHeader_;
     ls_.view.clockwisePlus = ls_.legacyPfg;
+    parseGlobalBlocks();
     for (const auto& line : src_.lines) {
         parseLine(line);
         if (errorCount() >= kMaxErrors) {
@@ -276,10 +282,16 @@ void Parser::parseLine(const SourceLine& line) {
         ended_ = true;
         return;
     }
-    if (word == "decomposition" || word == "homomorphism") {
-        section_ = word == "decomposition" ? Section::Decomposition : Section::Homomorphism;
-        currentTable_ = -1;
-        return;
+    // `decomposition`, `homomorphism`, with or without a colon, optionally followed by
+    // `no warnings` (graftal never prints the maximum-depth warning anyway).
+    for (const char* section : {"decomposition", "homomorphism"}) {
+        std::string s(section);
+        if (word == s || word == s + ":" || word == s + ": no warnings" ||
+            word == s + " no warnings" || word == s + ":no warnings") {
+            section_ = s == "decomposition" ? Section::Decomposition : Section::Homomorphism;
+            currentTable_ = -1;
+            return;
+        }
     }
     std::size_t colon = t.find(':', start);
     if (colon != std::string_view::npos) {
@@ -344,7 +356,9 @@ void Parser::parseDirective(const SourceLine& line, const std::string& kw, std::
         at(line, valueStart +
                      (firstNonBlank(value) == std::string_view::npos ? 0 : firstNonBlank(value)));
     double v = 0;
-    if (kw == "lsystem") {
+    if (isGlobalBlockKeyword(kw)) {
+        return;  // read by parseGlobalBlocks
+    } else if (kw == "lsystem") {
         ls_.name = std::string(trimView(value));
     } else if (kw == "derivation length") {
         if (!constantValue(line, valueStart, v)) return;
@@ -524,6 +538,7 @@ void Parser::parseAxiom(const SourceLine& line, std::size_t valueStart) {
     }
     ExpressionScope scope;
     scope.defines = &ls_.defines;
+    scope.state = &globals_;
     std::vector<double> args;
     for (const auto& tok : toks) {
         args.clear();
@@ -533,6 +548,12 @@ void Parser::parseAxiom(const SourceLine& line, std::size_t valueStart) {
             Expression e = compileExpression(a.text, aloc, scope, local);
             for (const auto& d : local.items()) diags_.add(d);
             if (e.empty()) return;
+            if (e.usesState() || e.prints()) {
+                // Start: runs first; the derivation evaluates these.
+                ls_.axiomArguments.push_back({ls_.axiom.size(), args.size(), std::move(e)});
+                args.push_back(0);
+                continue;
+            }
             try {
                 args.push_back(e.evaluate({}));
             } catch (const Error& err) {
@@ -592,6 +613,68 @@ void Parser::parseIgnore(const SourceLine& line, const std::string& kw, std::siz
     }
 }
 
+bool Parser::isGlobalBlockKeyword(const std::string& kw) {
+    return kw == "start" || kw == "starteach" || kw == "endeach" || kw == "end";
+}
+
+void Parser::parseGlobalBlocks() {
+    for (const auto& line : src_.lines) {
+        std::string_view t = line.text;
+        std::size_t start = firstNonBlank(t);
+        if (start == std::string_view::npos) continue;
+        std::size_t colon = t.find(':', start);
+        if (colon == std::string_view::npos) continue;
+        std::string kw = normaliseKeyword(t.substr(start, colon - start));
+        if (!isGlobalBlockKeyword(kw)) continue;
+        parseGlobalBlock(line, kw, colon + 1);
+    }
+}
+
+bool Parser::parseBlockAt(const SourceLine& line, std::size_t open, std::size_t close,
+                          BlockScope& scope, Block& out) {
+    std::string_view inside = std::string_view(line.text).substr(open + 1, close - open - 1);
+    std::function<SourceLocation(std::size_t)> locate = [&](std::size_t i) {
+        return at(line, open + 1 + i);
+    };
+    return parseBlock(inside, locate, scope, out, diags_);
+}
+
+bool Parser::parseGlobalBlock(const SourceLine& line, const std::string& kw,
+                              std::size_t valueStart) {
+    std::string_view t = line.text;
+    std::size_t open = t.find_first_not_of(" \t\r\f\v", valueStart);
+    if (open == std::string_view::npos || t[open] != '{') {
+        diags_.error(
+            at(line, open == std::string_view::npos ? t.size() : open),
+            "expected a block '{ ... }' after '" +
+                std::string(trimView(t.substr(firstNonBlank(t), valueStart - firstNonBlank(t)))) +
+                "'");
+        return false;
+    }
+    std::size_t close = matchingBrace(t, open);
+    if (close == std::string_view::npos) {
+        diags_.error(at(line, open), "expected '}' to close this block");
+        return false;
+    }
+    if (!isBlank(t.substr(close + 1))) {
+        diags_.error(at(line, close + 1), "unexpected text after the block");
+        return false;
+    }
+    Block* target = kw == "start"       ? &ls_.startBlock
+                    : kw == "starteach" ? &ls_.startEachBlock
+                    : kw == "endeach"   ? &ls_.endEachBlock
+                                        : &ls_.endBlock;
+    if (!target->empty()) {
+        diags_.error(at(line, firstNonBlank(t)), "a second '" + kw + ":' block");
+        return false;
+    }
+    BlockScope scope;
+    scope.defines = &ls_.defines;
+    scope.state = &globals_;
+    scope.stateNames = &ls_.stateNames;
+    return parseBlockAt(line, open, close, scope, *target);
+}
+
 std::size_t Parser::errorCount() const {
     std::size_t n = 0;
     for (const auto& d : diags_.items()) n += d.severity == Severity::Error;
@@ -604,6 +687,7 @@ LSystem parseLSystem(std::string_view text, const ParseOptions& options) {
     DiagnosticList diags;
     SourceText src;
     if (!prepareSource(text, options.fileName, src, diags)) throw Error(diags.items());
+    joinBlockLines(src);
     parsing::Parser parser(src, options, diags);
     LSystem ls = parser.run();
     if (diags.hasErrors()) {

@@ -10,6 +10,7 @@
 
 #include "graftal/lsystem.hpp"
 #include "module_lexer.hpp"
+#include "statement_parser.hpp"
 #include "source_text.hpp"
 
 namespace graftal::parsing {
@@ -68,6 +69,15 @@ class Parser {
     void checkBrackets(const std::vector<ModuleToken>& toks, const SourceLine& line,
                        const char* what);
 
+    // Start:, StartEach:, EndEach:, End: blocks (read before everything else, so that
+    // their variables are global wherever the lines stand).
+    void parseGlobalBlocks();
+    bool parseGlobalBlock(const SourceLine& line, const std::string& kw, std::size_t valueStart);
+    // A `{ ... }` at text[open] of `line` into `out`; false after reporting.
+    bool parseBlockAt(const SourceLine& line, std::size_t open, std::size_t close,
+                      BlockScope& scope, Block& out);
+    static bool isGlobalBlockKeyword(const std::string& kw);
+
     void parseIgnore(const SourceLine& line, const std::string& kw, std::size_t valueStart);
 
     // View settings for 3D pictures (view_parser.cpp).
@@ -99,6 +109,7 @@ class Parser {
     DiagnosticList& diags_;
     LSystem ls_;
     std::map<std::string, int> defineLines_;
+    std::map<std::string, std::uint32_t> globals_ = {{"Q", 0}, {"Z", 1}};
     bool sawLsystemHeader_ = false;
     bool sawAxiom_ = false;
     int axiomLine_ = 0;

@@ -95,20 +95,57 @@ void Parser::parseProduction(const SourceLine& line, Arrow arrow) {
     }
     prod.slotCount = static_cast<int>(formals.size());
 
+    // The production sees the globals and its own variables (created by its blocks).
+    std::map<std::string, std::uint32_t> state = globals_;
+    BlockScope blockScope;
+    blockScope.formals = &formals;
+    blockScope.defines = &ls_.defines;
+    blockScope.state = &state;
+    blockScope.stateNames = &ls_.stateNames;
+    blockScope.owner = " (production on line " + std::to_string(line.number) + ")";
     ExpressionScope scope;
     scope.variables = formals;
     scope.defines = &ls_.defines;
+    scope.state = &state;
     if (condColon != std::string_view::npos) {
-        std::string_view cond = lhs.substr(condColon + 1);
+        // `: { pre } condition { post }`, each part optional.
+        std::size_t condFrom = condColon + 1, condTo = lhs.size();
+        std::size_t first = lhs.find_first_not_of(" \t\r\f\v", condFrom);
+        if (first != std::string_view::npos && lhs[first] == '{') {
+            std::size_t close = matchingBrace(lhs, first);
+            if (close == std::string_view::npos) {
+                diags_.error(at(line, first), "expected '}' to close this block");
+                return;
+            }
+            if (!parseBlockAt(line, first, close, blockScope, prod.preBlock)) return;
+            condFrom = close + 1;
+        }
+        if (std::size_t open = lhs.find('{', condFrom); open != std::string_view::npos) {
+            std::size_t close = matchingBrace(lhs, open);
+            if (close == std::string_view::npos) {
+                diags_.error(at(line, open), "expected '}' to close this block");
+                return;
+            }
+            if (!isBlank(lhs.substr(close + 1))) {
+                diags_.error(at(line, close + 1),
+                             "unexpected text after the block: expected the arrow '-->'");
+                return;
+            }
+            condTo = open;
+        }
+        std::string_view cond = lhs.substr(condFrom, condTo - condFrom);
         std::size_t off = firstNonBlank(cond);
         if (off == std::string_view::npos || trimView(cond) == "*") {
             // `: *` is cpfg's "no condition"
         } else {
             Expression e =
-                compileExpression(trimView(cond), at(line, condColon + 1 + off), scope, diags_);
+                compileExpression(trimView(cond), at(line, condFrom + off), scope, diags_);
             if (e.empty()) return;
             prod.condition = std::move(e);
         }
+        if (condTo != lhs.size() &&
+            !parseBlockAt(line, condTo, matchingBrace(lhs, condTo), blockScope, prod.postBlock))
+            return;
     }
 
     // Right of the arrow: successor [: probability]

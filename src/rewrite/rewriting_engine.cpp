@@ -49,10 +49,17 @@ RewritingEngine::RewritingEngine(const LSystem& ls, const std::vector<Production
         multiPred_ |= p.predecessor.size() > 1;
         needBrackets_ |= p.hasContext();
         parametric_ |= p.isParametric() || p.condition.has_value();
+        sequential_ |= p.hasBlocks();
+        for (const auto& m : p.successor)
+            for (const auto& a : m.args) sequential_ |= a.prints();
+        sequential_ |=
+            (p.condition && p.condition->prints()) || (p.probability && p.probability->prints());
     }
+    // A block with a condition-less production still needs the generic machinery.
+    parametric_ |= sequential_;
     parametric_ |= ls.isParametric();
     tableCount_ = std::max<std::size_t>(1, ls.tableNames.size());
-    fast_ = !multiPred_ && !parametric_ && !needBrackets_ && !stochastic;
+    fast_ = !multiPred_ && !parametric_ && !needBrackets_ && !stochastic && !sequential_;
     candidates_.assign(tableCount_, std::vector<std::vector<std::uint32_t>>(ls.symbols.size()));
     for (std::uint32_t k = 0; k < productions_.size(); ++k) {
         const Production& p = productions_[k];
@@ -87,7 +94,7 @@ void RewritingEngine::buildQuickChoices() {
             f.argStart.push_back(static_cast<std::uint32_t>(f.args.size()));
             for (const auto& a : m.args) {
                 f.args.push_back(&a);
-                random |= a.usesRandom();
+                random |= a.needsContext();
             }
         }
         f.direct = !p.hasContext() && p.predecessor.size() == 1 && !random;
@@ -182,6 +189,8 @@ bool RewritingEngine::step(const ModuleString& cur, ModuleString& next, int step
                            std::size_t memoryLimit, const std::vector<std::uint8_t>* activeIn,
                            std::vector<std::uint8_t>* activeOut) {
     table = std::clamp(table, 0, static_cast<int>(tableCount_) - 1);
+    if (sequential_)
+        return stepSequential(cur, next, stepNumber, table, memoryLimit, activeIn, activeOut);
     if (!genericOnly_ && !activeIn && !activeOut && !cur.hasParameters()) {
         if (fast_) return stepFast(cur, next, stepNumber, table, memoryLimit);
         if (context_) return stepContext(cur, next, stepNumber, table, memoryLimit);
@@ -414,11 +423,57 @@ bool RewritingEngine::matches(const Production& p, const ModuleString& s, std::s
 }
 
 double RewritingEngine::evaluate(const Expression& e, const double* slots, Draws& draws) const {
-    std::span<const double> vars{slots, static_cast<std::size_t>(maxSlots_)};
-    if (!e.usesRandom()) return e.evaluate(vars);
+    std::span<const double> vars;
+    if (slots) vars = {slots, static_cast<std::size_t>(maxSlots_)};
+    if (!e.needsContext()) return e.evaluate(vars);
     EvalContext ctx;
     ctx.uniform = [&draws] { return draws(); };
+    ctx.state = state_;
+    ctx.print = print_;
     return e.evaluate(vars, &ctx);
+}
+
+void RewritingEngine::runStatements(const Block& block, const double* slots, Draws& draws) const {
+    // Loops are bounded so that a model cannot hang the program.
+    constexpr long kMaxIterations = 100'000'000;
+    for (const Statement& st : block) {
+        switch (st.kind) {
+            case Statement::Kind::Assign:
+                state_[st.target] = evaluate(st.value, slots, draws);
+                break;
+            case Statement::Kind::Evaluate:
+                evaluate(st.value, slots, draws);
+                break;
+            case Statement::Kind::If:
+                if (evaluate(st.value, slots, draws) != 0)
+                    runStatements(st.body, slots, draws);
+                else
+                    runStatements(st.elseBody, slots, draws);
+                break;
+            case Statement::Kind::While:
+            case Statement::Kind::DoWhile: {
+                long count = 0;
+                bool first = st.kind == Statement::Kind::DoWhile;
+                while (first || evaluate(st.value, slots, draws) != 0) {
+                    first = false;
+                    runStatements(st.body, slots, draws);
+                    if (++count > kMaxIterations)
+                        throw Error(st.value.location(), "the loop ran " +
+                                                             std::to_string(kMaxIterations) +
+                                                             " times without its condition '" +
+                                                             st.value.text() + "' becoming false");
+                }
+                break;
+            }
+        }
+    }
+}
+
+void RewritingEngine::runBlock(const Block& block, const double* slots, int stepNumber,
+                               std::uint64_t position) const {
+    if (!state_) throw Error(SourceLocation{ls_.file, 0, 0}, "blocks need the L-system's state");
+    Draws draws{this, static_cast<std::uint64_t>(stepNumber), position, 1ull << 40};
+    runStatements(block, slots, draws);
 }
 
 std::int32_t RewritingEngine::choose(const ModuleString& s, std::size_t i, std::uint64_t position,
@@ -429,16 +484,26 @@ std::int32_t RewritingEngine::choose(const ModuleString& s, std::size_t i, std::
     for (std::size_t k = 0; k < cands.size(); ++k) {
         const Production& p = productions_[cands[k]];
         if (!matches(p, s, i, slots)) continue;
-        if (p.condition && evaluate(*p.condition, slots, draws) == 0) continue;
-        if (!p.probability) return static_cast<std::int32_t>(cands[k]);
+        if (!p.preBlock.empty()) runStatements(p.preBlock, slots, draws);
+        const bool firstApplies = !p.condition || evaluate(*p.condition, slots, draws) != 0;
+        if (!p.probability) {
+            if (firstApplies) return static_cast<std::int32_t>(cands[k]);
+            continue;
+        }
+        // Without blocks, a stochastic production whose condition fails does not start
+        // the group (the next one does, with the same outcome).
+        if (!firstApplies && !sequential_) continue;
         // A stochastic group: every applicable production with a probability competes,
         // with weights normalised over the applicable ones (as cpfg does).
         weights.assign(cands.size(), 0.0);
         double sum = 0;
+        // cpfg runs the pre block and tests the condition of every candidate.
         for (std::size_t r = k; r < cands.size(); ++r) {
             const Production& q = productions_[cands[r]];
             if (!q.probability) continue;
+            if (r == k && !firstApplies) continue;
             if (!matches(q, s, i, slots)) continue;
+            if (r != k && !q.preBlock.empty()) runStatements(q.preBlock, slots, draws);
             if (r != k && q.condition && evaluate(*q.condition, slots, draws) == 0) continue;
             double w = evaluate(*q.probability, slots, draws);
             if (w > 0) {
@@ -674,6 +739,55 @@ bool RewritingEngine::stepGeneric(const ModuleString& cur, ModuleString& next, i
             }
         });
     return std::accumulate(rewritten.begin(), rewritten.end(), std::size_t(0)) > 0;
+}
+
+// ---- sequential path: productions with blocks ------------------------------------------
+
+// cpfg's order: each module is rewritten in turn, its pre blocks and conditions run, then
+// the chosen production's post block, then its successor's parameters. The order is the
+// string's, on one thread, whatever the thread count.
+bool RewritingEngine::stepSequential(const ModuleString& cur, ModuleString& next, int stepNumber,
+                                     int table, std::size_t limit,
+                                     const std::vector<std::uint8_t>* activeIn,
+                                     std::vector<std::uint8_t>* activeOut) {
+    std::size_t n = cur.size();
+    if (needBrackets_) brackets_.build(cur.symbols());
+    ModuleString out;
+    out.reserve(n, cur.paramCount());
+    if (parametric_ || cur.hasParameters()) out.rawParamStart().assign(1, 0);
+    if (activeOut) activeOut->clear();
+    std::vector<double> slots(static_cast<std::size_t>(maxSlots_)), weights, args;
+    bool any = false;
+    for (std::size_t i = 0; i < n; ++i) {
+        std::int32_t k = kIdentity;
+        try {
+            if (!activeIn || (*activeIn)[i])
+                k = choose(cur, i, i, stepNumber, table, slots.data(), weights);
+            if (k == kIdentity) {
+                out.push(cur.symbol(i), cur.params(i));
+                if (activeOut) activeOut->push_back(0);
+                continue;
+            }
+            any = true;
+            const Production& p = productions_[static_cast<std::size_t>(k)];
+            matches(p, cur, i, slots.data());
+            Draws draws{this, static_cast<std::uint64_t>(stepNumber), i, 1ull << 32};
+            if (!p.postBlock.empty()) runStatements(p.postBlock, slots.data(), draws);
+            for (const auto& m : p.successor) {
+                args.clear();
+                for (const auto& a : m.args) args.push_back(evaluate(a, slots.data(), draws));
+                out.push(m.symbol, args);
+                if (activeOut) activeOut->push_back(1);
+            }
+            i += p.predecessor.size() - 1;
+        } catch (const Error& err) {
+            rethrowAt(err, cur, i, stepNumber);
+        }
+        if ((i & 0xFFF) == 0) checkLimit(stepNumber, out.size(), out.paramCount(), 0, cur, limit);
+    }
+    checkLimit(stepNumber, out.size(), out.paramCount(), 0, cur, limit);
+    next = std::move(out);
+    return any;
 }
 
 }  // namespace graftal

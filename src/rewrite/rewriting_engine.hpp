@@ -5,7 +5,9 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
+#include <string_view>
 #include <vector>
 
 #include "bracket_index.hpp"
@@ -28,6 +30,16 @@ class RewritingEngine {
     bool step(const ModuleString& cur, ModuleString& next, int stepNumber, int table,
               std::size_t memoryLimit, const std::vector<std::uint8_t>* activeIn = nullptr,
               std::vector<std::uint8_t>* activeOut = nullptr);
+
+    // The L-system's state (LSystem::stateNames) that blocks and expressions read and
+    // write, and where printf writes. Without it, expressions that need them fail.
+    void setState(double* state, const std::function<void(std::string_view)>* print) {
+        state_ = state;
+        print_ = print;
+    }
+    // Runs a block of statements with `slots` bound (nullptr for Start: and the like).
+    void runBlock(const Block& block, const double* slots, int stepNumber,
+                  std::uint64_t position) const;
 
     bool parametric() const { return parametric_; }
     bool usesContext() const { return needBrackets_ || multiPred_; }
@@ -53,6 +65,10 @@ class RewritingEngine {
                   std::size_t limit);
     bool stepContext(const ModuleString& cur, ModuleString& next, int stepNumber, int table,
                      std::size_t limit);
+    bool stepSequential(const ModuleString& cur, ModuleString& next, int stepNumber, int table,
+                        std::size_t limit, const std::vector<std::uint8_t>* activeIn,
+                        std::vector<std::uint8_t>* activeOut);
+    void runStatements(const Block& block, const double* slots, Draws& draws) const;
     bool stepGeneric(const ModuleString& cur, ModuleString& next, int stepNumber, int table,
                      std::size_t limit, const std::vector<std::uint8_t>* activeIn,
                      std::vector<std::uint8_t>* activeOut);
@@ -86,6 +102,11 @@ class RewritingEngine {
     bool parametric_ = false;
     bool needBrackets_ = false;
     bool genericOnly_ = false;
+    // Productions with blocks or printf: modules are rewritten one after the other, in
+    // string order, on one thread (what a block writes is seen by the modules after it).
+    bool sequential_ = false;
+    double* state_ = nullptr;
+    const std::function<void(std::string_view)>* print_ = nullptr;
     int maxSlots_ = 1;
     std::size_t tableCount_ = 1;
 
