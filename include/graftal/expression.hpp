@@ -19,6 +19,8 @@ namespace graftal {
 struct EvalContext {
     // Returns a uniform number in [0, 1); called once per ran()/nran() evaluation.
     std::function<double()> uniform;
+    // srand(seed): restarts the stream that uniform() draws from at `seed`.
+    std::function<void(double)> reseed;
     // The L-system's state (LSystem::stateNames): read by names that are not parameters.
     const double* state = nullptr;
     // Where printf writes (the library never prints itself). nullptr: output is dropped.
@@ -53,6 +55,10 @@ class Expression {
         Load,    // state[arg]
         Printf,  // strings_[arg] formatted with the fn values on the stack; gives 0
         Select,  // c ? a : b with all three on the stack
+        Bran,    // bran(a, b): beta distributed in [0, 1]
+        Biran,   // biran(n, p): binomial, a whole number in 0..n
+        Srand,   // srand(seed): restarts the random stream, gives 0
+        Element,  // arrays_[arg] indexed by the values on the stack; fn 1: its slot number
         JumpIfFalse,
         JumpIfTrue,
         Jump,
@@ -132,6 +138,12 @@ class Expression {
     std::vector<Instr> code_;
     std::vector<double> constants_;
     std::vector<std::string> strings_;  // printf formats, escapes resolved
+    struct ArrayRef {
+        std::string name;
+        std::uint32_t base = 0;
+        std::vector<std::uint32_t> dims;
+    };
+    std::vector<ArrayRef> arrays_;  // arrays the program indexes
     std::string text_;
     SourceLocation location_;
     bool usesRandom_ = false;
@@ -142,6 +154,12 @@ class Expression {
 
 std::ostream& operator<<(std::ostream& os, const Expression& e);
 
+// A global array: its elements are state slots base .. base + product(dims) - 1, row-major.
+struct ArrayShape {
+    std::uint32_t base = 0;
+    std::vector<std::uint32_t> dims;
+};
+
 // Names an expression may use: formal parameters (slots) and #define constants.
 struct ExpressionScope {
     std::vector<std::string> variables;                           // slot i is variables[i]
@@ -149,7 +167,13 @@ struct ExpressionScope {
     // Names that are state slots (LSystem::stateNames) -> slot: the globals and, in a
     // production, its own variables.
     const std::map<std::string, std::uint32_t>* state = nullptr;
+    const std::map<std::string, ArrayShape>* arrays = nullptr;  // `define: { array ... }`
 };
+
+// Compiles `name[i][j]...` (text at `loc`) to a program giving the element's state slot,
+// for assignments to array elements.
+Expression compileElementAddress(std::string_view text, const SourceLocation& loc,
+                                 const ExpressionScope& scope, DiagnosticList& diags);
 
 // Compiles `text` (which starts at `loc`). Problems go to `diags` with exact columns; the
 // returned expression is then empty.

@@ -71,6 +71,7 @@ struct SuccessorModule {
 struct Statement {
     enum class Kind {
         Assign,    // state[target] = value
+        AssignElement,  // state[address] = value (an array element)
         Evaluate,  // value, for its effect (printf)
         If,        // if (value) body else elseBody
         While,     // while (value) body
@@ -79,6 +80,7 @@ struct Statement {
     Kind kind = Kind::Evaluate;
     std::uint32_t target = 0;
     Expression value;
+    Expression address;  // AssignElement: gives the element's state slot
     std::vector<Statement> body, elseBody;
 };
 using Block = std::vector<Statement>;
@@ -130,6 +132,9 @@ class LSystem {
     // complement here, so the engine only ever looks at this table.
     std::vector<bool> ignored = std::vector<bool>(kMaxSymbols, false);
     std::uint64_t seed = 0;
+    // `ring lsystem`: for context matching the string is a ring (its last module is
+    // followed by its first).
+    bool ring = false;
     ViewSettings view;
     bool legacyPfg = false;                    // read as a pfg data file (no Lsystem: header)
     std::vector<EnvironmentLine> environment;  // `environment:` lines, in file order
@@ -140,6 +145,10 @@ class LSystem {
     // applications. All start at 0.
     std::vector<std::string> stateNames = {"Q", "Z"};
     Block startBlock, startEachBlock, endEachBlock, endBlock;
+    // Global arrays (`define: { array a[3] = {1, 2, 3}; }`) and the initial values of
+    // their elements (state slot, value); every other slot starts at 0.
+    std::map<std::string, ArrayShape> arrays;
+    std::vector<std::pair<std::uint32_t, double>> initialState;
     // Axiom parameters that read the state: evaluated after Start: when a derivation begins.
     struct DeferredArgument {
         std::size_t module = 0, param = 0;

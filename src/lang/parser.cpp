@@ -74,6 +74,7 @@ const std::vector<std::string> kKeywords = {
     "starteach",
     "endeach",
     "end",
+    "define",
 };
 
 // `-->` wins; then the book's `→`; then `->` (not the `<-` `>` of a context like `<->`).
@@ -280,6 +281,10 @@ void Parser::parseLine(const SourceLine& line) {
     std::string word = normaliseKeyword(rest);
     if (word == "endlsystem") {
         ended_ = true;
+        return;
+    }
+    if (word == "ring lsystem" || word == "ring lsystem:") {
+        ls_.ring = true;
         return;
     }
     // `decomposition`, `homomorphism`, with or without a colon, optionally followed by
@@ -539,6 +544,7 @@ void Parser::parseAxiom(const SourceLine& line, std::size_t valueStart) {
     ExpressionScope scope;
     scope.defines = &ls_.defines;
     scope.state = &globals_;
+    scope.arrays = &ls_.arrays;
     std::vector<double> args;
     for (const auto& tok : toks) {
         args.clear();
@@ -614,19 +620,22 @@ void Parser::parseIgnore(const SourceLine& line, const std::string& kw, std::siz
 }
 
 bool Parser::isGlobalBlockKeyword(const std::string& kw) {
-    return kw == "start" || kw == "starteach" || kw == "endeach" || kw == "end";
+    return kw == "start" || kw == "starteach" || kw == "endeach" || kw == "end" || kw == "define";
 }
 
 void Parser::parseGlobalBlocks() {
-    for (const auto& line : src_.lines) {
-        std::string_view t = line.text;
-        std::size_t start = firstNonBlank(t);
-        if (start == std::string_view::npos) continue;
-        std::size_t colon = t.find(':', start);
-        if (colon == std::string_view::npos) continue;
-        std::string kw = normaliseKeyword(t.substr(start, colon - start));
-        if (!isGlobalBlockKeyword(kw)) continue;
-        parseGlobalBlock(line, kw, colon + 1);
+    // Arrays first: the blocks may use them wherever the lines stand.
+    for (bool arrays : {true, false}) {
+        for (const auto& line : src_.lines) {
+            std::string_view t = line.text;
+            std::size_t start = firstNonBlank(t);
+            if (start == std::string_view::npos) continue;
+            std::size_t colon = t.find(':', start);
+            if (colon == std::string_view::npos) continue;
+            std::string kw = normaliseKeyword(t.substr(start, colon - start));
+            if (!isGlobalBlockKeyword(kw) || (kw == "define") != arrays) continue;
+            parseGlobalBlock(line, kw, colon + 1);
+        }
     }
 }
 
@@ -660,6 +669,13 @@ bool Parser::parseGlobalBlock(const SourceLine& line, const std::string& kw,
         diags_.error(at(line, close + 1), "unexpected text after the block");
         return false;
     }
+    if (kw == "define") {
+        std::string_view inside = t.substr(open + 1, close - open - 1);
+        std::function<SourceLocation(std::size_t)> locate = [&](std::size_t i) {
+            return at(line, open + 1 + i);
+        };
+        return parseArrayDeclarations(inside, locate, ls_, diags_);
+    }
     Block* target = kw == "start"       ? &ls_.startBlock
                     : kw == "starteach" ? &ls_.startEachBlock
                     : kw == "endeach"   ? &ls_.endEachBlock
@@ -672,6 +688,7 @@ bool Parser::parseGlobalBlock(const SourceLine& line, const std::string& kw,
     scope.defines = &ls_.defines;
     scope.state = &globals_;
     scope.stateNames = &ls_.stateNames;
+    scope.arrays = &ls_.arrays;
     return parseBlockAt(line, open, close, scope, *target);
 }
 

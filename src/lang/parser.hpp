@@ -10,8 +10,8 @@
 
 #include "graftal/lsystem.hpp"
 #include "module_lexer.hpp"
-#include "statement_parser.hpp"
 #include "source_text.hpp"
+#include "statement_parser.hpp"
 
 namespace graftal::parsing {
 

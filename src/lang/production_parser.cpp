@@ -83,15 +83,18 @@ void Parser::parseProduction(const SourceLine& line, Arrow arrow) {
     if (gt != std::string_view::npos &&
         !parsePatterns(line, gt + 1, patEnd, prod.right, formals, "right context", true))
         return;
-    for (const auto* part : {&prod.left, &prod.predecessor}) {
-        for (const auto& m : *part) {
-            if (m.symbol == '[' || m.symbol == ']') {
-                diags_.error(m.location,
-                             "brackets may not appear in a predecessor or left "
-                             "context");
-                return;
-            }
+    // A predecessor's brackets are matched literally (cpfg); a left context cannot enter
+    // branches.
+    for (const auto& m : prod.left) {
+        if (m.symbol == '[' || m.symbol == ']') {
+            diags_.error(m.location, "brackets may not appear in a left context");
+            return;
         }
+    }
+    if (prod.predecessor.front().symbol == '[' || prod.predecessor.front().symbol == ']') {
+        diags_.error(prod.predecessor.front().location,
+                     "a predecessor cannot start with a bracket");
+        return;
     }
     prod.slotCount = static_cast<int>(formals.size());
 
@@ -102,11 +105,13 @@ void Parser::parseProduction(const SourceLine& line, Arrow arrow) {
     blockScope.defines = &ls_.defines;
     blockScope.state = &state;
     blockScope.stateNames = &ls_.stateNames;
+    blockScope.arrays = &ls_.arrays;
     blockScope.owner = " (production on line " + std::to_string(line.number) + ")";
     ExpressionScope scope;
     scope.variables = formals;
     scope.defines = &ls_.defines;
     scope.state = &state;
+    scope.arrays = &ls_.arrays;
     if (condColon != std::string_view::npos) {
         // `: { pre } condition { post }`, each part optional.
         std::size_t condFrom = condColon + 1, condTo = lhs.size();
@@ -166,6 +171,12 @@ void Parser::parseProduction(const SourceLine& line, Arrow arrow) {
         prod.probability = std::move(e);
     }
     std::string_view succ = t.substr(succFrom, succTo - succFrom);
+    if (std::size_t again = succ.find("-->"); again != std::string_view::npos) {
+        diags_.error(at(line, succFrom + again),
+                     "a second arrow '-->' in this production (a line starting with a TAB "
+                     "continues the line before it)");
+        return;
+    }
     if (isBlank(succ)) {
         diags_.error(at(line, succFrom),
                      "expected a successor after the arrow ('*' for "
@@ -191,20 +202,16 @@ void Parser::parseProduction(const SourceLine& line, Arrow arrow) {
         }
         checkBrackets(toks, line, "successor");
     }
-    if (section_ != Section::Main && prod.hasContext()) {
-        diags_.error(
-            prod.location,
-            std::string(section_ == Section::Decomposition ? "decomposition" : "homomorphism") +
-                " productions are context-free: remove the context");
+    // cpfg allows contexts in homomorphism productions, not in decomposition ones.
+    if (section_ == Section::Decomposition && prod.hasContext()) {
+        diags_.error(prod.location,
+                     "decomposition productions are context-free: remove the context");
         return;
     }
+    // A ']' without its '[' walks out of the branch the predecessor stands in.
     int depth = 0;
     for (const auto& m : prod.right) {
-        depth += m.symbol == '[' ? 1 : m.symbol == ']' ? -1 : 0;
-        if (depth < 0) {
-            diags_.error(m.location, "unbalanced ']' in the right context");
-            return;
-        }
+        depth += m.symbol == '[' ? 1 : m.symbol == ']' && depth > 0 ? -1 : 0;
     }
     if (depth != 0) {
         diags_.error(prod.location, "unbalanced '[' in the right context");

@@ -158,20 +158,22 @@ void joinBlockLines(SourceText& text) {
     std::vector<SourceLine> out;
     for (std::size_t i = 0; i < text.lines.size(); ++i) {
         SourceLine line = std::move(text.lines[i]);
-        bool beforeArrow = false;
-        if (openBlockDepth(line.text, beforeArrow) > 0 && beforeArrow &&
-            !startsWithAxiom(line.text)) {
-            std::vector<SourceText::Segment> segments{{0, line.number}};
-            while (i + 1 < text.lines.size()) {
-                SourceLine& more = text.lines[++i];
-                line.text += ' ';
-                segments.push_back({line.text.size(), more.number});
-                line.text += more.text;
-                bool unused = false;
-                if (openBlockDepth(line.text, unused) == 0) break;
-            }
-            text.joined[line.number] = std::move(segments);
+        std::vector<SourceText::Segment> segments{{0, line.number}};
+        const bool axiom = startsWithAxiom(line.text);
+        while (i + 1 < text.lines.size()) {
+            bool beforeArrow = false;
+            bool openBlock = !axiom && openBlockDepth(line.text, beforeArrow) > 0 && beforeArrow;
+            // cpfg: a line starting with a TAB continues the line before it.
+            const std::string& next = text.lines[i + 1].text;
+            bool continued = !next.empty() && next[0] == '\t' &&
+                             line.text.find_first_not_of(" \t\r\f\v") != std::string::npos;
+            if (!openBlock && !continued) break;
+            SourceLine& more = text.lines[++i];
+            line.text += ' ';
+            segments.push_back({line.text.size(), more.number});
+            line.text += more.text;
         }
+        if (segments.size() > 1) text.joined[line.number] = std::move(segments);
         out.push_back(std::move(line));
     }
     text.lines = std::move(out);

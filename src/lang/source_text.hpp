@@ -46,7 +46,8 @@ bool prepareSource(std::string_view bytes, const std::string& fileName, SourceTe
 
 // Joins a line that opens a statement block `{` it does not close with the lines that
 // follow, up to the line that closes it (a production's or a Start: block written over
-// several lines). A '{' after a production's arrow is a polygon and is left alone.
+// several lines); a '{' after a production's arrow is a polygon and is left alone. And,
+// as in cpfg, a line starting with a TAB continues the line before it.
 void joinBlockLines(SourceText& text);
 
 }  // namespace graftal

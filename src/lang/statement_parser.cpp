@@ -2,7 +2,9 @@
 // expressions inside are handed to the expression compiler.
 #include "statement_parser.hpp"
 
+#include <algorithm>
 #include <cctype>
+#include <cmath>
 
 namespace graftal::parsing {
 
@@ -107,6 +109,7 @@ class StatementParser {
         if (scope_.formals) es.variables = *scope_.formals;
         es.defines = scope_.defines;
         es.state = scope_.state;
+        es.arrays = scope_.arrays;
         std::size_t end = part.find_last_not_of(" \t\r\n");
         Expression e =
             compileExpression(part.substr(lead, end - lead + 1), locate_(from + lead), es, diags_);
@@ -220,9 +223,34 @@ class StatementParser {
             std::size_t after = pos_ + word.size();
             while (after < text_.size() && std::isspace(static_cast<unsigned char>(text_[after])))
                 ++after;
-            if (after < text_.size() && text_[after] == '[') {
-                fail(pos_,
-                     "array elements are not supported yet: '" + std::string(word) + "[...]'");
+            if (after < text_.size() && text_[after] == '[' && scope_.arrays &&
+                scope_.arrays->count(std::string(word))) {
+                // name[i]... = value;
+                std::size_t eq = findTopLevel(after, '=');
+                while (eq != std::string_view::npos && eq + 1 < text_.size() &&
+                       text_[eq + 1] == '=')
+                    eq = findTopLevel(eq + 2, '=');
+                if (eq == std::string_view::npos || eq > end) {
+                    fail(pos_, "expected '=' after the array element");
+                    return;
+                }
+                Statement s;
+                s.kind = Statement::Kind::AssignElement;
+                ExpressionScope es;
+                if (scope_.formals) es.variables = *scope_.formals;
+                es.defines = scope_.defines;
+                es.state = scope_.state;
+                es.arrays = scope_.arrays;
+                s.address =
+                    compileElementAddress(text_.substr(pos_, eq - pos_), locate_(pos_), es, diags_);
+                if (s.address.empty()) {
+                    failed_ = true;
+                    return;
+                }
+                s.value = compile(eq + 1, end);
+                if (failed_) return;
+                pos_ = end + 1;
+                out.push_back(std::move(s));
                 return;
             }
             if (after < end && text_[after] == '=' &&
@@ -284,6 +312,110 @@ class StatementParser {
 };
 
 }  // namespace
+
+bool parseArrayDeclarations(std::string_view text,
+                            const std::function<SourceLocation(std::size_t)>& locate, LSystem& ls,
+                            DiagnosticList& diags) {
+    std::size_t pos = 0;
+    auto skip = [&] {
+        while (pos < text.size() && std::isspace(static_cast<unsigned char>(text[pos]))) ++pos;
+    };
+    auto fail = [&](std::size_t at, const std::string& message) {
+        diags.error(locate(std::min(at, text.empty() ? 0 : text.size() - 1)), message);
+        return false;
+    };
+    auto constant = [&](std::size_t from, std::size_t to, double& value) {
+        std::string_view part = text.substr(from, to - from);
+        std::size_t lead = part.find_first_not_of(" \t\r\n");
+        if (lead == std::string_view::npos) return fail(from, "expected a value");
+        std::size_t last = part.find_last_not_of(" \t\r\n");
+        try {
+            value = evaluateConstant(part.substr(lead, last - lead + 1), locate(from + lead),
+                                     ls.defines);
+        } catch (const Error& e) {
+            for (const auto& d : e.diagnostics()) diags.add(d);
+            return false;
+        }
+        return true;
+    };
+    while (true) {
+        skip();
+        if (pos >= text.size()) return true;
+        if (text[pos] == ';') {
+            ++pos;
+            continue;
+        }
+        if (text.substr(pos, 5) != "array" || pos + 5 >= text.size() ||
+            !std::isspace(static_cast<unsigned char>(text[pos + 5])))
+            return fail(pos, "expected 'array name[size] = { values };' in 'define:'");
+        pos += 5;
+        while (true) {
+            skip();
+            std::size_t nameAt = pos;
+            while (pos < text.size() && isNameChar(text[pos])) ++pos;
+            std::string name(text.substr(nameAt, pos - nameAt));
+            if (name.empty() || !isNameStart(name[0]))
+                return fail(nameAt, "expected the array's name");
+            if (ls.arrays.count(name))
+                return fail(nameAt, "array '" + name + "' is declared twice");
+            ArrayShape shape;
+            std::size_t count = 1;
+            skip();
+            while (pos < text.size() && text[pos] == '[') {
+                std::size_t close = text.find(']', pos);
+                if (close == std::string_view::npos) return fail(pos, "expected ']'");
+                double size = 0;
+                if (!constant(pos + 1, close, size)) return false;
+                if (!(size >= 1) || size != std::floor(size) || size > 1e6 ||
+                    static_cast<double>(count) * size > 1e7)
+                    return fail(pos + 1,
+                                "an array dimension is a whole number from 1 (at most "
+                                "10000000 elements in all)");
+                shape.dims.push_back(static_cast<std::uint32_t>(size));
+                count *= static_cast<std::size_t>(size);
+                pos = close + 1;
+                skip();
+            }
+            if (shape.dims.empty()) return fail(pos, "expected '[size]' after '" + name + "'");
+            shape.base = static_cast<std::uint32_t>(ls.stateNames.size());
+            for (std::size_t k = 0; k < count; ++k)
+                ls.stateNames.push_back(name + "[" + std::to_string(k) + "]");
+            if (pos < text.size() && text[pos] == '=') {
+                ++pos;
+                skip();
+                if (pos >= text.size() || text[pos] != '{')
+                    return fail(pos, "expected '{' and the initial values");
+                std::size_t close = text.find('}', pos);
+                if (close == std::string_view::npos) return fail(pos, "expected '}'");
+                std::size_t from = pos + 1, k = 0;
+                while (from < close) {
+                    while (from < close && std::isspace(static_cast<unsigned char>(text[from])))
+                        ++from;
+                    std::size_t comma = text.find(',', from);
+                    if (comma == std::string_view::npos || comma > close) comma = close;
+                    double v = 0;
+                    if (!constant(from, comma, v)) return false;
+                    if (k >= count)
+                        return fail(from, "more initial values than '" + name + "' has elements");
+                    ls.initialState.emplace_back(shape.base + static_cast<std::uint32_t>(k++), v);
+                    from = comma + 1;
+                }
+                pos = close + 1;
+                skip();
+            }
+            ls.arrays[name] = shape;
+            if (pos < text.size() && text[pos] == ',') {
+                ++pos;
+                continue;
+            }
+            break;
+        }
+        skip();
+        if (pos >= text.size() || text[pos] != ';')
+            return fail(pos, "expected ';' after the array");
+        ++pos;
+    }
+}
 
 bool parseBlock(std::string_view text, const std::function<SourceLocation(std::size_t)>& locate,
                 BlockScope& scope, Block& out, DiagnosticList& diags) {

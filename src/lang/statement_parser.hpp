@@ -19,6 +19,7 @@ struct BlockScope {
     const std::map<std::string, std::string>* defines = nullptr;
     std::map<std::string, std::uint32_t>* state = nullptr;  // visible variables; grows
     std::vector<std::string>* stateNames = nullptr;         // LSystem::stateNames; grows
+    const std::map<std::string, ArrayShape>* arrays = nullptr;
     std::string owner;  // appended to the names of new slots, e.g. " (line 7)"
 };
 
@@ -26,6 +27,12 @@ struct BlockScope {
 // assigned for the first time becomes a new state slot. Returns false after reporting.
 bool parseBlock(std::string_view text, const std::function<SourceLocation(std::size_t)>& locate,
                 BlockScope& scope, Block& out, DiagnosticList& diags);
+
+// Parses the inside of `define: { array a[2] = {1, 2}, b[2][3]; ... }`, adding the arrays
+// to `ls` (their elements become state slots).
+bool parseArrayDeclarations(std::string_view text,
+                            const std::function<SourceLocation(std::size_t)>& locate, LSystem& ls,
+                            DiagnosticList& diags);
 
 // The end of the `{ ... }` block opening at text[open]: the index of its '}', npos when
 // it is not closed. Braces inside "strings" do not count.

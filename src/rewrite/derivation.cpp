@@ -62,6 +62,7 @@ Derivation::Derivation(LSystem lsystem, DerivationOptions options)
     // Q and Z, then the variables, all 0 until Start: runs.
     state_.assign(lsystem_.stateNames.size(), 0.0);
     state_[1] = lsystem_.derivationLength;
+    for (const auto& [slot, value] : lsystem_.initialState) state_[slot] = value;
     rules_->setState(state_.data(), &options_.print);
     if (decomposition_) decomposition_->setState(state_.data(), &options_.print);
     if (!lsystem_.startBlock.empty()) rules_->runBlock(lsystem_.startBlock, nullptr, 0, 0);
@@ -229,6 +230,7 @@ ModuleString applyHomomorphism(const LSystem& lsystem, const ModuleString& modul
     // The homomorphism sees the variables as they start (it runs outside the derivation).
     std::vector<double> state(lsystem.stateNames.size(), 0.0);
     state[1] = lsystem.derivationLength;
+    for (const auto& [slot, value] : lsystem.initialState) state[slot] = value;
     engine.setState(state.data(), &options.print);
     rewriteRecursively(engine, s, lsystem.homomorphismDepth, 0, options.memoryLimit);
     return s;

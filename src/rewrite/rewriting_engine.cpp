@@ -1,6 +1,7 @@
 #include "rewriting_engine.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <numeric>
@@ -36,7 +37,18 @@ void bind(const ModulePattern& p, const ModuleString& s, std::size_t j, double* 
 struct RewritingEngine::Draws {
     const RewritingEngine* engine;
     std::uint64_t step, position, next;
-    double operator()() { return uniformAt(engine->seed_, step, position, next++); }
+    bool reseeded = false;
+    std::uint64_t seed = 0;
+    double operator()() {
+        return uniformAt(reseeded ? seed : engine->seed_, step, position, next++);
+    }
+    // srand(x): the same x restarts the same numbers (at this module of this step).
+    void reseed(double x) {
+        reseeded = true;
+        if (!(std::fabs(x) < 9e18)) x = 0;
+        seed = static_cast<std::uint64_t>(static_cast<std::int64_t>(x)) ^ 0x5eed5eed5eed5eedULL;
+        next = 0;
+    }
 };
 
 RewritingEngine::RewritingEngine(const LSystem& ls, const std::vector<Production>& productions,
@@ -69,7 +81,11 @@ RewritingEngine::RewritingEngine(const LSystem& ls, const std::vector<Production
     }
     if (fast_) buildFastTables();
     buildQuickChoices();
-    if (!fast_ && !multiPred_ && !parametric_) {
+    // The ContextRewriter's branch handling assumes brackets are seen.
+    bool bracketsIgnored = ls.ignored['['] || ls.ignored[']'] || ls.ring;
+    for (const auto& p : productions_)
+        for (const auto& m : p.right) bracketsIgnored |= m.symbol == '=' || m.symbol == ']';
+    if (!fast_ && !multiPred_ && !parametric_ && !bracketsIgnored) {
         context_ = std::make_unique<ContextRewriter>(ls, productions_, candidates_, seed_);
         if (!context_->usable()) context_.reset();
     }
@@ -306,8 +322,15 @@ bool RewritingEngine::matchLeft(const Production& p, const ModuleString& s, std:
     int fill = slot + count;
     std::ptrdiff_t j = static_cast<std::ptrdiff_t>(i) - 1;
     auto syms = s.symbols();
+    bool wrapped = false;
     for (std::ptrdiff_t q = static_cast<std::ptrdiff_t>(pat.size()) - 1; q >= 0;) {
-        if (j < 0) return false;
+        if (j < 0) {
+            // A ring's first module is preceded by its last, once round.
+            if (!ls_.ring || wrapped || s.size() == 0) return false;
+            wrapped = true;
+            j = static_cast<std::ptrdiff_t>(s.size()) - 1;
+            continue;
+        }
         auto uj = static_cast<std::size_t>(j);
         Symbol c = syms[uj];
         if (c == '[') {
@@ -345,8 +368,30 @@ bool RewritingEngine::matchRight(const Production& p, const ModuleString& s, std
     auto syms = s.symbols();
     std::uint32_t entered[64];
     int depth = 0;
+    bool wrapped = false;
     for (std::size_t q = 0; q < p.right.size();) {
         const ModulePattern& m = p.right[q];
+        if (m.symbol == '=') {
+            // cpfg: skip the rest of the current branch, up to its ']' (or the string's end).
+            while (j < n && syms[j] != ']') {
+                if (syms[j] == '[') {
+                    std::uint32_t close = brackets_.match(j);
+                    if (close == BracketIndex::kNone) return false;
+                    j = close;
+                }
+                ++j;
+            }
+            ++q;
+            continue;
+        }
+        if (m.symbol == ']' && depth == 0) {
+            // Out of the branch the predecessor stands in: its ']' must come next.
+            while (j < n && syms[j] != ']' && syms[j] != '[' && ls_.ignored[syms[j]]) ++j;
+            if (j >= n || syms[j] != ']') return false;
+            ++j;
+            ++q;
+            continue;
+        }
         if (m.symbol == ']') {
             if (depth == 0) return false;
             std::uint32_t close = brackets_.match(entered[--depth]);
@@ -355,7 +400,12 @@ bool RewritingEngine::matchRight(const Production& p, const ModuleString& s, std
             ++q;
             continue;
         }
-        if (j >= n) return false;
+        if (j >= n) {
+            if (!ls_.ring || wrapped || n == 0) return false;
+            wrapped = true;  // a ring's last module is followed by its first
+            j = 0;
+            continue;
+        }
         Symbol c = syms[j];
         if (m.symbol == '[') {
             if (c == '[') {
@@ -370,6 +420,11 @@ bool RewritingEngine::matchRight(const Production& p, const ModuleString& s, std
                 continue;
             }
             return false;
+        }
+        if ((c == '[' || c == ']') && ls_.ignored[c]) {
+            // consider: without brackets: the context runs through branch ends (cpfg).
+            ++j;
+            continue;
         }
         if (c == '[') {
             std::uint32_t close = brackets_.match(j);
@@ -423,29 +478,42 @@ bool RewritingEngine::matches(const Production& p, const ModuleString& s, std::s
 }
 
 double RewritingEngine::evaluate(const Expression& e, const double* slots, Draws& draws) const {
+    return evaluate(e, slots, draws, sequential_);
+}
+
+double RewritingEngine::evaluate(const Expression& e, const double* slots, Draws& draws,
+                                 bool mayPrint) const {
     std::span<const double> vars;
     if (slots) vars = {slots, static_cast<std::size_t>(maxSlots_)};
     if (!e.needsContext()) return e.evaluate(vars);
     EvalContext ctx;
     ctx.uniform = [&draws] { return draws(); };
+    ctx.reseed = [&draws](double x) { draws.reseed(x); };
     ctx.state = state_;
-    ctx.print = print_;
+    // Only one thread rewrites when the productions print; elsewhere (parallel steps)
+    // warnings are not printed, so the output never depends on the thread count.
+    ctx.print = mayPrint ? print_ : nullptr;
     return e.evaluate(vars, &ctx);
 }
 
 void RewritingEngine::runStatements(const Block& block, const double* slots, Draws& draws) const {
     // Loops are bounded so that a model cannot hang the program.
-    constexpr long kMaxIterations = 100'000'000;
+    constexpr long kMaxIterations = 10'000'000;
     for (const Statement& st : block) {
         switch (st.kind) {
             case Statement::Kind::Assign:
-                state_[st.target] = evaluate(st.value, slots, draws);
+                state_[st.target] = evaluate(st.value, slots, draws, true);
                 break;
+            case Statement::Kind::AssignElement: {
+                double v = evaluate(st.value, slots, draws, true);
+                state_[static_cast<std::size_t>(evaluate(st.address, slots, draws, true))] = v;
+                break;
+            }
             case Statement::Kind::Evaluate:
-                evaluate(st.value, slots, draws);
+                evaluate(st.value, slots, draws, true);
                 break;
             case Statement::Kind::If:
-                if (evaluate(st.value, slots, draws) != 0)
+                if (evaluate(st.value, slots, draws, true) != 0)
                     runStatements(st.body, slots, draws);
                 else
                     runStatements(st.elseBody, slots, draws);
@@ -454,7 +522,7 @@ void RewritingEngine::runStatements(const Block& block, const double* slots, Dra
             case Statement::Kind::DoWhile: {
                 long count = 0;
                 bool first = st.kind == Statement::Kind::DoWhile;
-                while (first || evaluate(st.value, slots, draws) != 0) {
+                while (first || evaluate(st.value, slots, draws, true) != 0) {
                     first = false;
                     runStatements(st.body, slots, draws);
                     if (++count > kMaxIterations)
@@ -497,6 +565,7 @@ std::int32_t RewritingEngine::choose(const ModuleString& s, std::size_t i, std::
         // with weights normalised over the applicable ones (as cpfg does).
         weights.assign(cands.size(), 0.0);
         double sum = 0;
+        std::size_t firstApplicable = cands.size();
         // cpfg runs the pre block and tests the condition of every candidate.
         for (std::size_t r = k; r < cands.size(); ++r) {
             const Production& q = productions_[cands[r]];
@@ -505,13 +574,18 @@ std::int32_t RewritingEngine::choose(const ModuleString& s, std::size_t i, std::
             if (!matches(q, s, i, slots)) continue;
             if (r != k && !q.preBlock.empty()) runStatements(q.preBlock, slots, draws);
             if (r != k && q.condition && evaluate(*q.condition, slots, draws) == 0) continue;
+            if (firstApplicable == cands.size()) firstApplicable = r;
             double w = evaluate(*q.probability, slots, draws);
             if (w > 0) {
                 weights[r] = w;
                 sum += w;
             }
         }
-        if (sum <= 0) return kIdentity;
+        // cpfg: when every applicable weight is 0, the first applicable production applies.
+        if (sum <= 0)
+            return firstApplicable == cands.size()
+                       ? kIdentity
+                       : static_cast<std::int32_t>(cands[firstApplicable]);
         double u =
             uniformAt(seed_, static_cast<std::uint64_t>(stepNumber), position, 1u << 20) * sum;
         std::size_t last = k;

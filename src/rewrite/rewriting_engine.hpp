@@ -81,6 +81,8 @@ class RewritingEngine {
     bool matchRight(const Production& p, const ModuleString& s, std::size_t from, double* slots,
                     int& slot) const;
     double evaluate(const Expression& e, const double* slots, Draws& draws) const;
+    // Blocks (which run on one thread) always print; expressions only in sequential steps.
+    double evaluate(const Expression& e, const double* slots, Draws& draws, bool mayPrint) const;
     [[noreturn]] void rethrowAt(const class Error& err, const ModuleString& s, std::size_t i,
                                 int stepNumber) const;
     static double stringBytes(std::size_t modules, std::size_t params, bool parametric);
