@@ -364,14 +364,6 @@ class ExpressionCompiler {
                 return;
             }
         }
-        if (scope_.state) {
-            auto it = scope_.state->find(name);
-            if (it != scope_.state->end()) {
-                emit(Expression::Op::Load, it->second);
-                expr_.usesState_ = true;
-                return;
-            }
-        }
         if (scope_.defines) {
             auto it = scope_.defines->find(name);
             if (it != scope_.defines->end()) {
@@ -391,6 +383,15 @@ class ExpressionCompiler {
                     return;
                 }
                 inlineProgram(d->program);
+                return;
+            }
+        }
+        // After the #defines: like cpfg's preprocessor, a #define Q or Z wins.
+        if (scope_.state) {
+            auto it = scope_.state->find(name);
+            if (it != scope_.state->end()) {
+                emit(Expression::Op::Load, it->second);
+                expr_.usesState_ = true;
                 return;
             }
         }
