@@ -156,6 +156,9 @@ TEST(Blocks, ErrorsNameTheConstructAndItsPlace) {
               "test.l:2:10: error: expected ';' after the statement");
     EXPECT_EQ(parseError("Lsystem: 1\nStart: { for (;;) {} }\nAxiom: A\nA --> B\n"),
               "test.l:2:10: error: 'for' statements are not supported yet");
+    EXPECT_EQ(parseError("Lsystem: 1\nStart: { f = fopen(\"out.txt\", \"w\"); }\nAxiom: A\n"),
+              "test.l:2:14: error: fopen() (cpfg's file output) is not supported yet; printf() "
+              "is");
 }
 
 // A loop that never ends is stopped with an error naming its condition.

@@ -52,12 +52,12 @@ class Expression {
         Call2,
         Ran,
         Nran,
-        Load,    // state[arg]
-        Printf,  // strings_[arg] formatted with the fn values on the stack; gives 0
-        Select,  // c ? a : b with all three on the stack
-        Bran,    // bran(a, b): beta distributed in [0, 1]
-        Biran,   // biran(n, p): binomial, a whole number in 0..n
-        Srand,   // srand(seed): restarts the random stream, gives 0
+        Load,     // state[arg]
+        Printf,   // strings_[arg] formatted with the fn values on the stack; gives 0
+        Select,   // c ? a : b with all three on the stack
+        Bran,     // bran(a, b): beta distributed in [0, 1]
+        Biran,    // biran(n, p): binomial, a whole number in 0..n
+        Srand,    // srand(seed): restarts the random stream, gives 0
         Element,  // arrays_[arg] indexed by the values on the stack; fn 1: its slot number
         JumpIfFalse,
         JumpIfTrue,

@@ -70,12 +70,12 @@ struct SuccessorModule {
 // production's formal parameters live in the L-system's state (LSystem::stateNames).
 struct Statement {
     enum class Kind {
-        Assign,    // state[target] = value
+        Assign,         // state[target] = value
         AssignElement,  // state[address] = value (an array element)
-        Evaluate,  // value, for its effect (printf)
-        If,        // if (value) body else elseBody
-        While,     // while (value) body
-        DoWhile,   // do body while (value)
+        Evaluate,       // value, for its effect (printf)
+        If,             // if (value) body else elseBody
+        While,          // while (value) body
+        DoWhile,        // do body while (value)
     };
     Kind kind = Kind::Evaluate;
     std::uint32_t target = 0;

@@ -7,10 +7,10 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
-#include <map>
-#include <memory>
 #include <cstdio>
 #include <cstring>
+#include <map>
+#include <memory>
 #include <set>
 
 namespace graftal {
@@ -555,6 +555,10 @@ class ExpressionCompiler {
     void parseCall(const std::string& name, std::size_t start) {
         if (name == "printf") {
             parsePrintf(start);
+            return;
+        }
+        if (name == "fprintf" || name == "fopen" || name == "fclose" || name == "fflush") {
+            fail(start, name + "() (cpfg's file output) is not supported yet; printf() is");
             return;
         }
         const FunctionInfo* fn = nullptr;
