@@ -212,3 +212,15 @@ TEST(Blocks, RandomBuiltIns) {
         "\tS(srand(3), srand(3) + ran(1) == srand(3) + ran(1))\nendlsystem\n");
     EXPECT_EQ(deriveWith(ls, 1), "R(0,1,1)N(0)B(1)I(1,1)S(0,1)");
 }
+
+// Productions that only read a global (written between steps by StartEach:) keep the
+// parallel paths; the string is the same for any thread count.
+TEST(Blocks, GlobalsReadByProductionsStayParallelAndDeterministic) {
+    LSystem ls = parse(
+        "Lsystem: 1\nderivation length: 17\nStart: { g = 0; }\nStartEach: { g = g + 1; }\n"
+        "Axiom: A(0)\nA(x) : x < g --> A(g) B(x)\nB(x) --> B(x + g) B(x)\nendlsystem\n");
+    std::string one = deriveWith(ls, 1);
+    // 2^17 modules, enough for the step to be split between threads.
+    EXPECT_EQ(one.substr(0, 20), "A(17)B(16)B(32)B(15)");
+    for (unsigned threads : {2u, 7u}) EXPECT_EQ(deriveWith(ls, threads), one) << threads;
+}
