@@ -2,6 +2,9 @@
 // what cpfg 6600 printed for the same files (the oracle cases named in each test).
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include "test_helpers.hpp"
@@ -156,9 +159,8 @@ TEST(Blocks, ErrorsNameTheConstructAndItsPlace) {
               "test.l:2:10: error: expected ';' after the statement");
     EXPECT_EQ(parseError("Lsystem: 1\nStart: { for (;;) {} }\nAxiom: A\nA --> B\n"),
               "test.l:2:10: error: 'for' statements are not supported yet");
-    EXPECT_EQ(parseError("Lsystem: 1\nStart: { f = fopen(\"out.txt\", \"w\"); }\nAxiom: A\n"),
-              "test.l:2:14: error: fopen() (cpfg's file output) is not supported yet; printf() "
-              "is");
+    EXPECT_EQ(parseError("Lsystem: 1\nStart: { f = fopen(\"out.txt\", \"r\"); }\nAxiom: A\n"),
+              "test.l:2:31: error: fopen() opens files for writing: mode \"w\" or \"a\"");
 }
 
 // A loop that never ends is stopped with an error naming its condition.
@@ -223,4 +225,39 @@ TEST(Blocks, GlobalsReadByProductionsStayParallelAndDeterministic) {
     // 2^17 modules, enough for the step to be split between threads.
     EXPECT_EQ(one.substr(0, 20), "A(17)B(16)B(32)B(15)");
     for (unsigned threads : {2u, 7u}) EXPECT_EQ(deriveWith(ls, threads), one) << threads;
+}
+
+// fopen/fprintf/fclose write files in the model's folder (cpfg's file output).
+TEST(Blocks, FprintfWritesAFileBesideTheModel) {
+    namespace fs = std::filesystem;
+    fs::path dir = fs::temp_directory_path() / "graftal-blocks-fprintf";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    {
+        std::ofstream l(dir / "m.l");
+        l << "Lsystem: 1\nderivation length: 2\nStart: { f = fopen(\"log.txt\", \"w\"); }\n"
+             "End: { fprintf(f, \"end %g\\n\", Q); fclose(f); }\nAxiom: A(1)\n"
+             "A(x) : { fprintf(f, \"A(%g)\\n\", x); fflush(f); } * --> A(x+1)\nendlsystem\n";
+    }
+    LSystem ls = loadLSystem(dir / "m.l");
+    EXPECT_EQ(derive(ls).toString(ls.symbols), "A(3)");
+    std::ifstream in(dir / "log.txt");
+    std::stringstream text;
+    text << in.rdbuf();
+    EXPECT_EQ(text.str(), "A(1)\nA(2)\nend 2\n");
+    fs::remove_all(dir);
+}
+
+TEST(Blocks, FopenOutsideTheModelFolderIsRefused) {
+    LSystem ls = parse(
+        "Lsystem: 1\nStart: { f = fopen(\"/tmp/../etc/graftal-test.txt\", \"w\"); }\n"
+        "Axiom: A\nendlsystem\n");
+    try {
+        derive(ls, 0);
+        FAIL() << "expected an error";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.diagnostics().front().toString(),
+                  "test.l:2:14: error: fopen(\"/tmp/../etc/graftal-test.txt\"): a model may only "
+                  "write files inside its own folder or the working directory");
+    }
 }

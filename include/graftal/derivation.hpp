@@ -67,6 +67,7 @@ class Derivation {
     bool finished_ = false;
     int steps_ = 0;
     std::vector<double> state_;
+    std::unique_ptr<class ModelOutputFiles> files_;  // fopen/fprintf in the model
 };
 
 // Derives `steps` steps from the axiom (steps < 0: the file's derivation length).

@@ -14,6 +14,18 @@
 
 namespace graftal {
 
+// Files a model writes with fopen/fprintf/fclose/fflush (cpfg's file output). Handles are
+// numbers the model keeps in variables; 0 is never a valid handle.
+class OutputFiles {
+  public:
+    virtual ~OutputFiles() = default;
+    // Throws Error (at `where`) when the file may not or cannot be written.
+    virtual double open(const std::string& name, bool append, const SourceLocation& where) = 0;
+    virtual void write(double handle, std::string_view text, const SourceLocation& where) = 0;
+    virtual void flush(double handle, const SourceLocation& where) = 0;
+    virtual void close(double handle, const SourceLocation& where) = 0;
+};
+
 // What a running expression may need besides its variables: random numbers from the
 // L-system's counter-based stream. Deterministic code passes nullptr.
 struct EvalContext {
@@ -25,6 +37,8 @@ struct EvalContext {
     const double* state = nullptr;
     // Where printf writes (the library never prints itself). nullptr: output is dropped.
     const std::function<void(std::string_view)>* print = nullptr;
+    // Where fopen/fprintf go. nullptr: using them is an error.
+    OutputFiles* files = nullptr;
 };
 
 class Expression {
@@ -59,6 +73,10 @@ class Expression {
         Biran,    // biran(n, p): binomial, a whole number in 0..n
         Srand,    // srand(seed): restarts the random stream, gives 0
         Element,  // arrays_[arg] indexed by the values on the stack; fn 1: its slot number
+        Fopen,    // fopen(strings_[arg], mode): a handle
+        Fprintf,  // fprintf(handle, strings_[arg], fn values): 0
+        Fclose,   // fclose(handle): 0
+        Fflush,   // fflush(handle): 0
         JumpIfFalse,
         JumpIfTrue,
         Jump,

@@ -467,7 +467,10 @@ class ExpressionCompiler {
         auto sbase = static_cast<std::uint32_t>(expr_.strings_.size());
         expr_.strings_.insert(expr_.strings_.end(), e.strings_.begin(), e.strings_.end());
         for (std::size_t k = expr_.code_.size() - e.code_.size(); k < expr_.code_.size(); ++k)
-            if (expr_.code_[k].op == Expression::Op::Printf) expr_.code_[k].arg += sbase;
+            if (expr_.code_[k].op == Expression::Op::Printf ||
+                (expr_.code_[k].op >= Expression::Op::Fopen &&
+                 expr_.code_[k].op <= Expression::Op::Fflush))
+                expr_.code_[k].arg += sbase;
     }
 
     // name[i][j]...: true when `name` is an array (errors then reported here).
@@ -552,13 +555,70 @@ class ExpressionCompiler {
         expr_.prints_ = true;
     }
 
+    // fopen("name", "w"), fprintf(file, "format", values...), fclose(file), fflush(file).
+    void parseFileCall(const std::string& name) {
+        ++pos_;  // '('
+        std::string text;
+        int count = 0;
+        if (name == "fopen") {
+            std::string mode;
+            if (!parseString(text)) return;
+            if (!accept(",")) {
+                fail(pos_, "expected ',' and the mode in fopen(\"name\", \"w\")");
+                return;
+            }
+            skipSpace();
+            std::size_t modeAt = pos_;
+            if (!parseString(mode)) return;
+            if (mode != "w" && mode != "a") {
+                fail(modeAt, "fopen() opens files for writing: mode \"w\" or \"a\"");
+                return;
+            }
+            if (mode == "a")
+                text.insert(0, 1, '+');  // appended: marked for OutputFiles
+            else
+                text.insert(0, 1, '=');
+        } else {
+            parseTernary();  // the handle
+            if (failed_) return;
+            if (name == "fprintf") {
+                if (!accept(",")) {
+                    fail(pos_, "expected ',' and a format string after the file in fprintf()");
+                    return;
+                }
+                if (!parseString(text)) return;
+                while (accept(",")) {
+                    parseTernary();
+                    if (failed_) return;
+                    ++count;
+                }
+            }
+        }
+        if (!accept(")")) {
+            fail(pos_, "expected ')' to end the arguments of " + name + "()");
+            return;
+        }
+        if (count > 254) {
+            fail(pos_, "fprintf() takes at most 254 values");
+            return;
+        }
+        expr_.strings_.push_back(std::move(text));
+        auto op = name == "fopen"     ? Expression::Op::Fopen
+                  : name == "fprintf" ? Expression::Op::Fprintf
+                  : name == "fclose"  ? Expression::Op::Fclose
+                                      : Expression::Op::Fflush;
+        emit(op, static_cast<std::uint32_t>(expr_.strings_.size() - 1),
+             static_cast<std::uint8_t>(count));
+        expr_.prints_ = true;
+    }
+
     void parseCall(const std::string& name, std::size_t start) {
         if (name == "printf") {
             parsePrintf(start);
             return;
         }
         if (name == "fprintf" || name == "fopen" || name == "fclose" || name == "fflush") {
-            fail(start, name + "() (cpfg's file output) is not supported yet; printf() is");
+            parseFileCall(name);
             return;
         }
         const FunctionInfo* fn = nullptr;
@@ -612,6 +672,15 @@ class ExpressionCompiler {
                 case Expression::Op::Var:
                 case Expression::Op::Load:
                     ++depth;
+                    break;
+                case Expression::Op::Fopen:
+                    ++depth;
+                    break;
+                case Expression::Op::Fprintf:
+                    depth -= in.fn;
+                    break;
+                case Expression::Op::Fclose:
+                case Expression::Op::Fflush:
                     break;
                 case Expression::Op::Printf:
                     depth += 1 - in.fn;
@@ -979,6 +1048,32 @@ double Expression::run(std::span<const double> slots, const EvalContext* ctx) co
                     throw Error(location_, "'" + text_ + "' reads a variable where none exists");
                 st[++sp] = ctx->state[in.arg];
                 break;
+            case Op::Fopen:
+            case Op::Fprintf:
+            case Op::Fclose:
+            case Op::Fflush: {
+                if (!ctx || !ctx->files)
+                    throw Error(location_, "'" + text_ +
+                                               "' writes a file where files cannot be "
+                                               "written");
+                if (in.op == Op::Fopen) {
+                    // The parser marks the mode: '+' appends, '=' truncates.
+                    const std::string& name = strings_[in.arg];
+                    st[++sp] = ctx->files->open(name.substr(1), name[0] == '+', location_);
+                } else if (in.op == Op::Fprintf) {
+                    sp -= in.fn;
+                    ctx->files->write(st[sp], formatPrintf(strings_[in.arg], {st + sp + 1, in.fn}),
+                                      location_);
+                    st[sp] = 0;
+                } else {
+                    if (in.op == Op::Fclose)
+                        ctx->files->close(st[sp], location_);
+                    else
+                        ctx->files->flush(st[sp], location_);
+                    st[sp] = 0;
+                }
+                break;
+            }
             case Op::Printf: {
                 sp -= in.fn;
                 if (ctx && ctx->print && *ctx->print)

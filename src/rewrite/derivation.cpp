@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "graftal/turtle.hpp"
+#include "output_files.hpp"
 #include "parallel.hpp"
 #include "rewriting_engine.hpp"
 
@@ -63,8 +64,9 @@ Derivation::Derivation(LSystem lsystem, DerivationOptions options)
     state_.assign(lsystem_.stateNames.size(), 0.0);
     state_[1] = lsystem_.derivationLength;
     for (const auto& [slot, value] : lsystem_.initialState) state_[slot] = value;
-    rules_->setState(state_.data(), &options_.print);
-    if (decomposition_) decomposition_->setState(state_.data(), &options_.print);
+    files_ = std::make_unique<ModelOutputFiles>(std::filesystem::path(lsystem_.file).parent_path());
+    rules_->setState(state_.data(), &options_.print, files_.get());
+    if (decomposition_) decomposition_->setState(state_.data(), &options_.print, files_.get());
     if (!lsystem_.startBlock.empty()) rules_->runBlock(lsystem_.startBlock, nullptr, 0, 0);
     if (!lsystem_.axiomArguments.empty()) {
         // Axiom parameters that read variables see what Start: left in them.
@@ -74,6 +76,7 @@ Derivation::Derivation(LSystem lsystem, DerivationOptions options)
             EvalContext ctx;
             ctx.state = state_.data();
             ctx.print = &options_.print;
+            ctx.files = files_.get();
             params[starts[a.module] + a.param] = a.value.evaluate({}, &ctx);
         }
     }

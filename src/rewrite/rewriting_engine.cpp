@@ -493,6 +493,7 @@ double RewritingEngine::evaluate(const Expression& e, const double* slots, Draws
     // Only one thread rewrites when the productions print; elsewhere (parallel steps)
     // warnings are not printed, so the output never depends on the thread count.
     ctx.print = mayPrint ? print_ : nullptr;
+    ctx.files = mayPrint ? files_ : nullptr;
     return e.evaluate(vars, &ctx);
 }
 

@@ -33,9 +33,11 @@ class RewritingEngine {
 
     // The L-system's state (LSystem::stateNames) that blocks and expressions read and
     // write, and where printf writes. Without it, expressions that need them fail.
-    void setState(double* state, const std::function<void(std::string_view)>* print) {
+    void setState(double* state, const std::function<void(std::string_view)>* print,
+                  OutputFiles* files = nullptr) {
         state_ = state;
         print_ = print;
+        files_ = files;
     }
     // Runs a block of statements with `slots` bound (nullptr for Start: and the like).
     void runBlock(const Block& block, const double* slots, int stepNumber,
@@ -109,6 +111,7 @@ class RewritingEngine {
     bool sequential_ = false;
     double* state_ = nullptr;
     const std::function<void(std::string_view)>* print_ = nullptr;
+    OutputFiles* files_ = nullptr;
     int maxSlots_ = 1;
     std::size_t tableCount_ = 1;
 
