@@ -81,6 +81,12 @@ DerivationOptions derivationOptions(const InputOptions& in, const Model& model) 
     opts.seed = in.seed;
     opts.threads = in.threads;
     opts.queryResolver = turtleQueryResolver(model.view);
+    // printf in a model writes to standard error, as cpfg's does (standard output may
+    // carry the derived string).
+    opts.print = [](std::string_view text) {
+        endProgressLine();
+        std::cerr << text << std::flush;
+    };
     // Progress for long derivations, only where a person watches (a terminal), and only
     // once a derivation has taken more than a second.
     if (!in.quiet && ::isatty(2)) {
@@ -325,7 +331,8 @@ int runStats(const InputOptions& in, bool geometry, bool predict) {
     j["file"] = in.file;
     j["steps"] = l.steps;
     if (chooseStreaming(l, in, true)) {
-        StreamedMeasure m = measureStreamed(l.model, l.steps, derivationOptions(in, l.model), geometry);
+        StreamedMeasure m =
+            measureStreamed(l.model, l.steps, derivationOptions(in, l.model), geometry);
         j["modules"] = m.modules;
         j["symbols"] = symbolsJson(l.model.lsystem.symbols, m.symbolCounts);
         if (geometry) {
@@ -342,10 +349,10 @@ int runStats(const InputOptions& in, bool geometry, bool predict) {
     // homomorphism that walk also counts the symbols, so the string is read once.
     std::optional<StreamedMeasure> m;
     if (geometry)
-        m = measureModules(
-            l.model, l.model.lsystem.homomorphism.empty()
-                         ? modules
-                         : applyHomomorphism(l.model.lsystem, modules, derivationOptions(in, l.model)));
+        m = measureModules(l.model, l.model.lsystem.homomorphism.empty()
+                                        ? modules
+                                        : applyHomomorphism(l.model.lsystem, modules,
+                                                            derivationOptions(in, l.model)));
     std::vector<std::uint64_t> counts;
     if (m && l.model.lsystem.homomorphism.empty()) {
         counts = m->symbolCounts;

@@ -75,6 +75,7 @@ void renderDerivation(const Model& model, int steps, const InputOptions& in,
         derivation.step();
         strings.push_back(derivation.current());
     }
+    derivation.finish();
     endProgressLine();
     RenderOptions render = out.render;
     if (!out.backgroundGiven && model.view.background) render.background = *model.view.background;
