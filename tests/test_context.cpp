@@ -144,7 +144,7 @@ TEST(ContextFastPath, RandomStringsAgreeAcrossChunkBoundaries) {
     const char* systems[] = {
         "Lsystem: 1\naxiom: A\nignore: +-\nA < B > A --> [+B]C\nA < B --> -B\nB > C --> BB\n"
         "C < A --> *\nB --> A\nendlsystem\n",
-        "Lsystem: 1\naxiom: A\nconsider: ABD\nA < C --> D\nD > B --> [A]\n"
+        "Lsystem: 1\naxiom: A\nconsider: ABD[]\nA < C --> D\nD > B --> [A]\n"
         "B < D > A --> C+C\nA > C --> B\nendlsystem\n",
         "Lsystem: 1\naxiom: A\nignore: C+\nA < A > A --> B\nB < A > B --> [A]A\nC < A --> D\n"
         "A > + --> C\n+ --> -\nendlsystem\n",
@@ -200,4 +200,61 @@ TEST(ContextFastPath, RightContextOnASkippedModuleTakesTheGenericPath) {
     LSystem ls = parse("Lsystem: 1\nignore: +\naxiom: A+B\n+ > B --> -\nA < B --> C\nendlsystem\n");
     expectSameAsGenericPath(ls, ls.axiom, 2, "ignored predecessor", false);
     EXPECT_EQ(derived(ls, 1), "A-C");
+}
+
+// cpfg: Y[Z]XV[W[X]]E[K]T (oracle s08_consider): with `consider:` not listing the
+// brackets, a right context runs through branch ends; a left context still jumps over
+// whole branches.
+TEST(Context, ConsiderWithoutBracketsCrossesBranchEnds) {
+    EXPECT_EQ(derived("Lsystem: 1\nconsider: XK\nAxiom: A[B]X C[D[X]] E[K]G\nA > X --> Y\n"
+                      "B > X --> Z\nC > X --> V\nD > X --> W\nK < G --> U\nX < G --> T\n"
+                      "endlsystem\n",
+                      1),
+              "Y[Z]XV[W[X]]E[K]T");
+    // Listing them keeps the usual branch rules (oracle s08_consider_brackets).
+    EXPECT_EQ(derived("Lsystem: 1\nconsider: X[]\nAxiom: A[B]X C[D[X]]\nA > X --> Y\n"
+                      "B > X --> Z\nC > X --> V\nD > X --> W\nendlsystem\n",
+                      1),
+              "Y[B]XC[D[X]]");
+}
+
+// cpfg: X(1,2,3,4)[B(2)C][D(3)E]Y(4)Z[H]K[V[W]P]R (oracle s08_rcon_skip).
+TEST(Context, EqualsSkipsTheBranchAndCloseBracketWalksOut) {
+    EXPECT_EQ(derived("Lsystem: 1\nAxiom: A(1)[B(2)C][D(3)E]F(4) G[H]K [M[N]P]R\n"
+                      "A(a) > [B(b)=][D(d)=]F(f) --> X(a,b,d,f)\nF(f) > G --> Y(f)\n"
+                      "G > K --> Z\nM > =]R --> V\nN > ]P --> W\nH > K --> U\nendlsystem\n",
+                      1),
+              "X(1,2,3,4)[B(2)C][D(3)E]Y(4)Z[H]K[V[W]P]R");
+}
+
+// cpfg: A(3)CH after two steps (oracle s08_pred_brackets).
+TEST(Context, BracketsInAPredecessorMatchLiterally) {
+    EXPECT_EQ(derived("Lsystem: 1\nAxiom: A(1)[B(2)]C D[E]F\nA(x)[B(y)] --> A(x+y)\n"
+                      "D[E] --> G\nG F --> H\nendlsystem\n",
+                      2),
+              "A(3)CH");
+}
+
+// cpfg: T(0)T(0)T(0)T(1) and ZBY (oracle s08_ring, s08_ring_context).
+TEST(Context, RingLsystemWrapsContexts) {
+    EXPECT_EQ(derived("Lsystem: 1\nring lsystem\nAxiom: T(1) T(0) T(0) T(0)\n"
+                      "T(l) < T(x) --> T(l)\nendlsystem\n",
+                      3),
+              "T(0)T(0)T(0)T(1)");
+    EXPECT_EQ(derived("Lsystem: 1\nRing Lsystem\nAxiom: A B C\nB C < A > B C --> Z\n"
+                      "C > A --> Y\nA < B > A --> W\nendlsystem\n",
+                      1),
+              "ZBY");
+}
+
+// cpfg: F(1)[+F(0.5)]F(2)A (oracle s08_homomorphism): homomorphism productions may have
+// contexts; `homomorphism: no warnings` is accepted.
+TEST(Context, HomomorphismWithContext) {
+    LSystem ls = parse(
+        "Lsystem: 1\nderivation length: 2\nAxiom: A\nA --> S(1) A\n"
+        "homomorphism: no warnings\nmaximum depth: 2\nS(x) > A --> F(x*2)\n"
+        "S(x) --> F(x) L\nL --> [+F(0.5)]\nendlsystem\n");
+    ModuleString s = derive(ls, 2);
+    EXPECT_EQ(s.toString(ls.symbols), "S(1)S(1)A");
+    EXPECT_EQ(applyHomomorphism(ls, s).toString(ls.symbols), "F(1)[+F(0.5)]F(2)A");
 }

@@ -42,9 +42,12 @@ TEST(Homomorphism, ParametersFlowThrough) {
               "[+F(3)][-F(3)]");
 }
 
-TEST(Homomorphism, ContextIsRefused) {
-    EXPECT_EQ(parseError("Lsystem: 1\naxiom: A\nhomomorphism\nB < A --> F\nendlsystem\n"),
-              "test.l:4:1: error: homomorphism productions are context-free: remove the context");
+// cpfg allows contexts in homomorphism productions (oracle s08_homomorphism), not in
+// decomposition ones.
+TEST(Homomorphism, ContextIsAllowedInHomomorphismOnly) {
+    EXPECT_EQ(parseError("Lsystem: 1\naxiom: A\nhomomorphism\nB < A --> F\nendlsystem\n"), "");
+    EXPECT_EQ(parseError("Lsystem: 1\naxiom: A\ndecomposition\nB < A --> F\nendlsystem\n"),
+              "test.l:4:1: error: decomposition productions are context-free: remove the context");
 }
 
 TEST(Cut, RemovesTheRestOfItsBranchAtTheNextStep) {

@@ -207,3 +207,29 @@ TEST(ParserErrors, TooManyModuleNamesIsAnErrorWithItsPlace) {
     EXPECT_NE(e.find("test.l:3:8"), std::string::npos) << e;
     EXPECT_NE(e.find("too many module names"), std::string::npos) << e;
 }
+
+// cpfg: R(1)[S(2)]R(2)[S(3)]P(3)T(20,21) (oracle s01_continuation): a line starting with
+// a TAB continues the line before it.
+TEST(Parser, TabContinuesTheLineBefore) {
+    EXPECT_EQ(graftal::testing::derived(
+                  "Lsystem: 1\nderivation length: 2\nAxiom: P(1)\n\tQ(2)\n"
+                  "P(n) : n < 3 -->\n\tR(n)\n\t[S(n+1)]\n\tP(n+1)\n"
+                  "Q(m) : {\n    k = m*10;\n    j = k + 1;\n} * --> T(k,\n\tj)\nendlsystem\n",
+                  2),
+              "R(1)[S(2)]R(2)[S(3)]P(3)T(20,21)");
+    // cpfg rejects a production glued to the one above (oracle s01_tab_joins_lines).
+    EXPECT_EQ(graftal::testing::parseError("Lsystem: 1\nAxiom: A B\nA --> X\n\tB --> Y\n"),
+              "test.l:4:4: error: a second arrow '-->' in this production (a line starting "
+              "with a TAB continues the line before it)");
+}
+
+// cpfg: E[E[E[E[E[C]]]]]DE[E[C]]DA (oracle s08_decomposition): `decomposition:` with a
+// colon and `no warnings`.
+TEST(Parser, DecompositionWithColonAndNoWarnings) {
+    EXPECT_EQ(graftal::testing::derived(
+                  "Lsystem: 1\nderivation length: 2\nAxiom: A\nA --> B A\n"
+                  "decomposition: no warnings\nmaximum depth: 3\nB --> C D\nC --> E [C]\n"
+                  "endlsystem\n",
+                  2),
+              "E[E[E[E[E[C]]]]]DE[E[C]]DA");
+}

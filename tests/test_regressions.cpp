@@ -230,7 +230,7 @@ TEST(Regressions, OccupancyRadiusCountsEachNeighbourOnceAcrossBuckets) {
 TEST(Regressions, ATableCountThatFailsToEvaluateIsCollectedWithTheOtherErrors) {
     try {
         graftal::testing::parse(
-            "Lsystem: 1\ntable: T\ntable schedule: T 1/0\naxiom: F(\nendlsystem\n");
+            "Lsystem: 1\ntable: T\ntable schedule: T sqrt(-1)\naxiom: F(\nendlsystem\n");
         ADD_FAILURE() << "no error";
     } catch (const Error& e) {
         ASSERT_EQ(e.diagnostics().size(), 2u) << e.what();

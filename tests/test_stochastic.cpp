@@ -68,9 +68,13 @@ TEST(Stochastic, WeightsAreExpressionsNormalisedOverApplicableProductions) {
     EXPECT_EQ(graftal::testing::derived(ls, 1), "BBBBBBBB");
 }
 
-TEST(Stochastic, ZeroTotalWeightLeavesTheModule) {
+// cpfg (oracle p11_probabilities): with every weight 0 the first applicable production
+// applies.
+TEST(Stochastic, ZeroTotalWeightTakesTheFirstApplicableProduction) {
     LSystem ls = parse("Lsystem: 1\naxiom: AA\nA --> B : 0\nA --> C : 0\nendlsystem\n");
-    EXPECT_EQ(graftal::testing::derived(ls, 1), "AA");
+    EXPECT_EQ(graftal::testing::derived(ls, 1), "BB");
+    LSystem cs = parse("Lsystem: 1\naxiom: XAA\nX < A --> B : 0\nA --> C : 0\nendlsystem\n");
+    EXPECT_EQ(graftal::testing::derived(cs, 1), "XBC");
 }
 
 TEST(Stochastic, RandomFunctionsAreReproducible) {

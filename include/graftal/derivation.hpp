@@ -6,6 +6,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <string_view>
 #include <vector>
 
 #include "graftal/cancellation.hpp"
@@ -41,6 +42,8 @@ struct DerivationOptions {
     // Raised from another thread to stop: checked before and after every step's rewriting;
     // a cancelled step throws Cancelled and leaves the current string as it was.
     CancellationToken cancel;
+    // Where printf writes (cpfg writes to standard error). Empty: the text is dropped.
+    std::function<void(std::string_view)> print;
 };
 
 class Derivation {
@@ -59,6 +62,12 @@ class Derivation {
     // expression fails; the current string is then left as it was.
     void step();
     void run(int steps);
+    // Runs the End: block, once, after the last step (not when no step was done, as cpfg).
+    // derive() calls it; callers that drive step() themselves call it when done.
+    void finish();
+    // The L-system's variables (LSystem::stateNames): Q, Z, then globals and the
+    // productions' own variables.
+    const std::vector<double>& state() const { return state_; }
 
     int stepsDone() const { return steps_; }
     const ModuleString& current() const { return *current_; }
@@ -76,7 +85,10 @@ class Derivation {
     std::unique_ptr<Environment> ownedEnvironment_;
     Environment* environment_ = nullptr;
     bool queries_ = false;
+    bool finished_ = false;
     int steps_ = 0;
+    std::vector<double> state_;
+    std::unique_ptr<class ModelOutputFiles> files_;  // fopen/fprintf in the model
 };
 
 // Derives `steps` steps from the axiom (steps < 0: the file's derivation length).

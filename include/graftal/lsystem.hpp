@@ -34,6 +34,25 @@ struct SuccessorModule {
     std::vector<Expression> args;
 };
 
+// One statement of a `{ ... }` block (cpfg's C-like statements). Variables other than a
+// production's formal parameters live in the L-system's state (LSystem::stateNames).
+struct Statement {
+    enum class Kind {
+        Assign,         // state[target] = value
+        AssignElement,  // state[address] = value (an array element)
+        Evaluate,       // value, for its effect (printf)
+        If,             // if (value) body else elseBody
+        While,          // while (value) body
+        DoWhile,        // do body while (value)
+    };
+    Kind kind = Kind::Evaluate;
+    std::uint32_t target = 0;
+    Expression value;
+    Expression address;  // AssignElement: gives the element's state slot
+    std::vector<Statement> body, elseBody;
+};
+using Block = std::vector<Statement>;
+
 struct Production {
     std::vector<ModulePattern> left;         // left context, in string order
     std::vector<ModulePattern> predecessor;  // strict predecessor (pfg allows several)
@@ -41,11 +60,16 @@ struct Production {
     std::optional<Expression> condition;
     std::vector<SuccessorModule> successor;  // empty for *
     std::optional<Expression> probability;
+    // `pred : { pre } condition { post } --> succ`: pre runs whenever the predecessor and
+    // context match (before the condition), post when the production is applied (before
+    // the successor's parameters are evaluated).
+    Block preBlock, postBlock;
     SourceLocation location;
     int slotCount = 0;  // formal parameters bound, in all three parts
     int table = -1;     // index into LSystem::tableNames; -1: every table
 
     bool hasContext() const { return !left.empty() || !right.empty(); }
+    bool hasBlocks() const { return !preBlock.empty() || !postBlock.empty(); }
     bool isParametric() const;
     void print(std::ostream& os, const SymbolTable& symbols) const;
 };
@@ -78,9 +102,28 @@ class LSystem {
     // complement here, so the engine only ever looks at this table.
     std::vector<bool> ignored = std::vector<bool>(kMaxSymbols, false);
     std::uint64_t seed = 0;
+    // `ring lsystem`: for context matching the string is a ring (its last module is
+    // followed by its first).
+    bool ring = false;
     bool legacyPfg = false;                    // read as a pfg data file (no Lsystem: header)
     std::vector<EnvironmentLine> environment;  // `environment:` lines, in file order
     std::map<std::string, std::string> defines;
+    // State shared by blocks and expressions: slot 0 is Q (the step being performed), 1 is Z
+    // (the derivation length); then the globals (assigned in Start:, StartEach:, EndEach:
+    // or End:) and each production's own variables, which keep their value between
+    // applications. All start at 0.
+    std::vector<std::string> stateNames = {"Q", "Z"};
+    Block startBlock, startEachBlock, endEachBlock, endBlock;
+    // Global arrays (`define: { array a[3] = {1, 2, 3}; }`) and the initial values of
+    // their elements (state slot, value); every other slot starts at 0.
+    std::map<std::string, ArrayShape> arrays;
+    std::vector<std::pair<std::uint32_t, double>> initialState;
+    // Axiom parameters that read the state: evaluated after Start: when a derivation begins.
+    struct DeferredArgument {
+        std::size_t module = 0, param = 0;
+        Expression value;
+    };
+    std::vector<DeferredArgument> axiomArguments;
 
     // The table used by derivation step `step` (1-based); 0 when there are no tables.
     int tableForStep(int step) const;
@@ -88,6 +131,13 @@ class LSystem {
     bool hasContext() const;
     bool hasMultiModulePredecessor() const;
     bool isParametric() const;
+    // Whether a derivation step has effects beyond its string: a production block, or an
+    // expression that writes (printf). Such steps rewrite the modules in string order.
+    bool hasSideEffects() const;
+    bool hasGlobalBlocks() const {
+        return !startBlock.empty() || !startEachBlock.empty() || !endEachBlock.empty() ||
+               !endBlock.empty();
+    }
     // Prints the L-system back in the .l language; the view settings, when given, go where
     // a .l file usually has them (after the seed).
     void print(std::ostream& os, const ViewSettings* view = nullptr) const;

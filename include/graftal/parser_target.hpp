@@ -6,8 +6,10 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -22,6 +24,9 @@ namespace graftal {
 
 // Which list a production belongs to.
 enum class ProductionGroup { Main, Decomposition, Homomorphism };
+
+// Which of the global statement blocks a block is.
+enum class GlobalBlock { Start, StartEach, EndEach, End };
 
 // One view setting as a file states it: its name in the .l spelling ("step length",
 // "viewpoint", "line style", ...; see viewSettingNames()), its value and where it stands.
@@ -57,6 +62,20 @@ class ParserTarget {
     // `module NAME, ...`: a multi-letter module name.
     virtual Symbol declareModule(std::string_view name, const SourceLocation& where) = 0;
     virtual void axiom(ModuleString axiom, const SourceLocation& where) = 0;
+    // A parameter of the axiom that reads the state (a global, an array, ran()): it is
+    // evaluated when a derivation begins, after Start:. Comes after axiom(); the axiom holds
+    // 0 at (module, param) meanwhile.
+    virtual void deferredAxiomArgument(std::size_t module, std::size_t param, Expression value) = 0;
+    // `Start: { ... }` and the others; each at most once.
+    virtual void globalBlock(GlobalBlock which, Block block, const SourceLocation& where) = 0;
+    // The state the blocks and expressions share, once everything is read: the names of its
+    // slots (0 is Q, 1 is Z, then globals, array elements and production variables), the
+    // arrays and the initial values of their elements (slot, value).
+    virtual void stateVariables(std::vector<std::string> names,
+                                std::map<std::string, ArrayShape> arrays,
+                                std::vector<std::pair<std::uint32_t, double>> initialValues) = 0;
+    // `ring lsystem`: the string is a ring for context matching.
+    virtual void ring(const SourceLocation& where) = 0;
     // A production; its `table` is the index of the table declared before it (-1: none).
     virtual void production(ProductionGroup group, Production production) = 0;
     // `maximum depth:` of the decomposition or homomorphism section.
@@ -92,6 +111,11 @@ class ModelBuilder : public ParserTarget {
     SymbolTable& symbols() override { return model_.lsystem.symbols; }
     Symbol declareModule(std::string_view name, const SourceLocation& where) override;
     void axiom(ModuleString axiom, const SourceLocation& where) override;
+    void deferredAxiomArgument(std::size_t module, std::size_t param, Expression value) override;
+    void globalBlock(GlobalBlock which, Block block, const SourceLocation& where) override;
+    void stateVariables(std::vector<std::string> names, std::map<std::string, ArrayShape> arrays,
+                        std::vector<std::pair<std::uint32_t, double>> initialValues) override;
+    void ring(const SourceLocation& where) override;
     void production(ProductionGroup group, Production production) override;
     void maximumDepth(ProductionGroup group, int depth, const SourceLocation& where) override;
     void table(const std::string& name, const SourceLocation& where) override;

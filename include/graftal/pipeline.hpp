@@ -41,6 +41,8 @@ struct DeriveRequest {
     std::function<void(int step, std::size_t modules)> progress;
     // Called at once with every note (e.g. "streaming it instead"); they are also returned.
     std::function<void(const Diagnostic&)> notify;
+    // Where a model's printf writes (cpfg writes to standard error). Empty: dropped.
+    std::function<void(std::string_view)> print;
     CancellationToken cancel;
 };
 

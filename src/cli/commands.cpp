@@ -85,6 +85,12 @@ DeriveRequest deriveRequest(const InputOptions& in) {
     r.memoryLimit = in.memoryLimit;
     r.stream = in.stream ? StreamPolicy::Always : StreamPolicy::Auto;
     r.streamLimit = in.streamLimit;
+    // printf in a model writes to standard error, as cpfg's does (standard output may
+    // carry the derived string).
+    r.print = [](std::string_view text) {
+        endProgressLine();
+        std::cerr << text << std::flush;
+    };
     // Progress for long derivations, only where a person watches (a terminal), and only
     // once a derivation has taken more than a second.
     if (!in.quiet && ::isatty(2)) {

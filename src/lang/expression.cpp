@@ -1,10 +1,14 @@
 // Recursive-descent compiler from expression text to a postfix program, and its evaluator.
 #include "graftal/expression.hpp"
+#include "graftal/module_string.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <map>
 #include <memory>
 #include <set>
@@ -51,6 +55,8 @@ constexpr std::array kFunctions{
     FunctionInfo{"sign", 1, FnSign}, FunctionInfo{"atan2", 2, FnAtan2},
     FunctionInfo{"min", 2, FnMin},   FunctionInfo{"max", 2, FnMax},
     FunctionInfo{"ran", 1, 0},       FunctionInfo{"nran", 2, 0},
+    FunctionInfo{"bran", 2, 0},      FunctionInfo{"biran", 2, 0},
+    FunctionInfo{"srand", 1, 0},
 };
 
 }  // namespace
@@ -61,6 +67,25 @@ class ExpressionCompiler {
                        const ExpressionScope& scope, DiagnosticList& diags)
         : text_(text), loc_(loc), scope_(scope), diags_(diags) {}
 
+    // `name[...]...` only, compiled to the element's slot number.
+    Expression compileAddress() {
+        expr_.text_ = std::string(trim(text_));
+        expr_.location_ = loc_;
+        skipSpace();
+        std::size_t start = pos_;
+        while (pos_ < text_.size() &&
+               (std::isalnum(static_cast<unsigned char>(text_[pos_])) || text_[pos_] == '_'))
+            ++pos_;
+        std::string name(text_.substr(start, pos_ - start));
+        if (!parseElement(name, start, true)) fail(start, "'" + name + "' is not an array");
+        skipSpace();
+        if (!failed_ && pos_ < text_.size())
+            fail(pos_, "unexpected '" + std::string(1, text_[pos_]) + "' after the element");
+        if (failed_) return Expression{};
+        computeStackDepth();
+        return std::move(expr_);
+    }
+
     Expression compile() {
         expr_.text_ = std::string(trim(text_));
         expr_.location_ = loc_;
@@ -68,7 +93,7 @@ class ExpressionCompiler {
         if (pos_ >= text_.size()) {
             fail(pos_, "expected an expression");
         } else {
-            parseOr();
+            parseTernary();
             skipSpace();
             if (!failed_ && pos_ < text_.size())
                 fail(pos_, "unexpected '" + std::string(1, text_[pos_]) +
@@ -127,6 +152,22 @@ class ExpressionCompiler {
         emit(Expression::Op::Const, static_cast<std::uint32_t>(expr_.constants_.size() - 1));
     }
 
+    // cpfg's `c ? a : b` (both branches are evaluated, as they have no side effects
+    // other than printf).
+    void parseTernary() {
+        parseOr();
+        if (!failed_ && accept("?")) {
+            parseTernary();
+            if (failed_) return;
+            if (!accept(":")) {
+                fail(pos_, "expected ':' in 'condition ? value : value'");
+                return;
+            }
+            parseTernary();
+            emit(Expression::Op::Select);
+        }
+    }
+
     void parseOr() {
         parseAnd();
         while (!failed_ && accept("||")) {
@@ -153,7 +194,9 @@ class ExpressionCompiler {
         parseAdditive();
         while (!failed_) {
             Expression::Op op;
-            if (accept("<="))
+            if (accept("<>"))
+                op = Expression::Op::Ne;
+            else if (accept("<="))
                 op = Expression::Op::Le;
             else if (accept(">="))
                 op = Expression::Op::Ge;
@@ -195,16 +238,16 @@ class ExpressionCompiler {
     }
 
     void parseMultiplicative() {
-        parseUnary();
+        parsePower();
         while (!failed_) {
             if (accept("*")) {
-                parseUnary();
+                parsePower();
                 emit(Expression::Op::Mul);
             } else if (accept("/")) {
-                parseUnary();
+                parsePower();
                 emit(Expression::Op::Div);
             } else if (accept("%")) {
-                parseUnary();
+                parsePower();
                 emit(Expression::Op::Mod);
             } else
                 return;
@@ -241,13 +284,14 @@ class ExpressionCompiler {
             emit(Expression::Op::Not);
             return;
         }
-        parsePower();
+        parsePrimary();
     }
 
+    // cpfg's ^: a sign binds tighter (-2^2 = 4) and it groups to the left (2^3^2 = 64).
     void parsePower() {
-        parsePrimary();
-        if (!failed_ && accept("^")) {
-            parseUnary();  // right-associative: 2^3^2 = 2^9
+        parseUnary();
+        while (!failed_ && accept("^")) {
+            parseUnary();
             emit(Expression::Op::Pow);
         }
     }
@@ -261,7 +305,7 @@ class ExpressionCompiler {
         char c = text_[pos_];
         if (c == '(') {
             ++pos_;
-            parseOr();
+            parseTernary();
             if (!failed_ && !accept(")")) fail(pos_, "expected ')'");
             return;
         }
@@ -276,6 +320,8 @@ class ExpressionCompiler {
                 ++pos_;
             std::string name(text_.substr(start, pos_ - start));
             skipSpace();
+            if (pos_ < text_.size() && text_[pos_] == '[' && parseElement(name, start, false))
+                return;
             if (pos_ < text_.size() && text_[pos_] == '(') {
                 parseCall(name, start);
             } else {
@@ -340,6 +386,15 @@ class ExpressionCompiler {
                 return;
             }
         }
+        // After the #defines: like cpfg's preprocessor, a #define Q or Z wins.
+        if (scope_.state) {
+            auto it = scope_.state->find(name);
+            if (it != scope_.state->end()) {
+                emit(Expression::Op::Load, it->second);
+                expr_.usesState_ = true;
+                return;
+            }
+        }
         fail(start, "unknown name '" + name + "'" +
                         (scope_.variables.empty() ? std::string()
                                                   : " (not a parameter of this production)"));
@@ -378,7 +433,9 @@ class ExpressionCompiler {
         }
         bool usesVariables = false;
         for (const auto& in : d.program.code_) usesVariables |= in.op == Expression::Op::Var;
-        if (!usesVariables && !d.program.usesRandom_) {
+        // State, arrays and printf are read or done where the expression runs.
+        if (!usesVariables && !d.program.usesRandom_ && !d.program.usesState_ &&
+            !d.program.prints_) {
             try {
                 d.value = d.program.evaluate({});
                 d.folded = true;
@@ -401,9 +458,169 @@ class ExpressionCompiler {
             expr_.code_.push_back(in);
         }
         expr_.usesRandom_ |= e.usesRandom_;
+        expr_.usesState_ |= e.usesState_;
+        expr_.prints_ |= e.prints_;
+        auto abase = static_cast<std::uint32_t>(expr_.arrays_.size());
+        expr_.arrays_.insert(expr_.arrays_.end(), e.arrays_.begin(), e.arrays_.end());
+        for (std::size_t k = expr_.code_.size() - e.code_.size(); k < expr_.code_.size(); ++k)
+            if (expr_.code_[k].op == Expression::Op::Element) expr_.code_[k].arg += abase;
+        auto sbase = static_cast<std::uint32_t>(expr_.strings_.size());
+        expr_.strings_.insert(expr_.strings_.end(), e.strings_.begin(), e.strings_.end());
+        for (std::size_t k = expr_.code_.size() - e.code_.size(); k < expr_.code_.size(); ++k)
+            if (expr_.code_[k].op == Expression::Op::Printf ||
+                (expr_.code_[k].op >= Expression::Op::Fopen &&
+                 expr_.code_[k].op <= Expression::Op::Fflush))
+                expr_.code_[k].arg += sbase;
+    }
+
+    // name[i][j]...: true when `name` is an array (errors then reported here).
+    bool parseElement(const std::string& name, std::size_t start, bool address) {
+        if (!scope_.arrays) return false;
+        auto it = scope_.arrays->find(name);
+        if (it == scope_.arrays->end()) return false;
+        const ArrayShape& shape = it->second;
+        for (std::size_t d = 0; d < shape.dims.size(); ++d) {
+            if (!accept("[")) {
+                fail(pos_, "'" + name + "' has " + std::to_string(shape.dims.size()) +
+                               " dimensions: expected '['");
+                return true;
+            }
+            parseTernary();
+            if (failed_) return true;
+            if (!accept("]")) {
+                fail(pos_, "expected ']' after the subscript");
+                return true;
+            }
+        }
+        skipSpace();
+        if (pos_ < text_.size() && text_[pos_] == '[') {
+            fail(pos_,
+                 "'" + name + "' has only " + std::to_string(shape.dims.size()) + " dimensions");
+            return true;
+        }
+        expr_.arrays_.push_back({name, shape.base, shape.dims});
+        emit(Expression::Op::Element, static_cast<std::uint32_t>(expr_.arrays_.size() - 1),
+             address ? 1 : 0);
+        expr_.usesState_ = true;
+        (void)start;
+        return true;
+    }
+
+    // A "..." literal, with C's \n \t \\ \" escapes resolved.
+    bool parseString(std::string& out) {
+        skipSpace();
+        if (pos_ >= text_.size() || text_[pos_] != '"') {
+            fail(pos_, "expected a format string in double quotes");
+            return false;
+        }
+        std::size_t start = pos_++;
+        while (pos_ < text_.size() && text_[pos_] != '"') {
+            char c = text_[pos_++];
+            if (c == '\\' && pos_ < text_.size()) {
+                char e = text_[pos_++];
+                c = e == 'n' ? '\n' : e == 't' ? '\t' : e == 'r' ? '\r' : e == '0' ? '\0' : e;
+            }
+            out += c;
+        }
+        if (pos_ >= text_.size()) {
+            fail(start, "unterminated string: expected a closing '\"'");
+            return false;
+        }
+        ++pos_;
+        return true;
+    }
+
+    // printf("format", values...): prints through the EvalContext and gives 0.
+    void parsePrintf(std::size_t start) {
+        ++pos_;  // '('
+        std::string format;
+        if (!parseString(format)) return;
+        int count = 0;
+        while (accept(",")) {
+            parseTernary();
+            if (failed_) return;
+            ++count;
+        }
+        if (!accept(")")) {
+            fail(pos_, "expected ')' or ',' in the arguments of printf()");
+            return;
+        }
+        if (count > 255) {
+            fail(start, "printf() takes at most 255 values");
+            return;
+        }
+        expr_.strings_.push_back(std::move(format));
+        emit(Expression::Op::Printf, static_cast<std::uint32_t>(expr_.strings_.size() - 1),
+             static_cast<std::uint8_t>(count));
+        expr_.prints_ = true;
+    }
+
+    // fopen("name", "w"), fprintf(file, "format", values...), fclose(file), fflush(file).
+    void parseFileCall(const std::string& name) {
+        ++pos_;  // '('
+        std::string text;
+        int count = 0;
+        if (name == "fopen") {
+            std::string mode;
+            if (!parseString(text)) return;
+            if (!accept(",")) {
+                fail(pos_, "expected ',' and the mode in fopen(\"name\", \"w\")");
+                return;
+            }
+            skipSpace();
+            std::size_t modeAt = pos_;
+            if (!parseString(mode)) return;
+            if (mode != "w" && mode != "a") {
+                fail(modeAt, "fopen() opens files for writing: mode \"w\" or \"a\"");
+                return;
+            }
+            if (mode == "a")
+                text.insert(0, 1, '+');  // appended: marked for OutputFiles
+            else
+                text.insert(0, 1, '=');
+        } else {
+            parseTernary();  // the handle
+            if (failed_) return;
+            if (name == "fprintf") {
+                if (!accept(",")) {
+                    fail(pos_, "expected ',' and a format string after the file in fprintf()");
+                    return;
+                }
+                if (!parseString(text)) return;
+                while (accept(",")) {
+                    parseTernary();
+                    if (failed_) return;
+                    ++count;
+                }
+            }
+        }
+        if (!accept(")")) {
+            fail(pos_, "expected ')' to end the arguments of " + name + "()");
+            return;
+        }
+        if (count > 254) {
+            fail(pos_, "fprintf() takes at most 254 values");
+            return;
+        }
+        expr_.strings_.push_back(std::move(text));
+        auto op = name == "fopen"     ? Expression::Op::Fopen
+                  : name == "fprintf" ? Expression::Op::Fprintf
+                  : name == "fclose"  ? Expression::Op::Fclose
+                                      : Expression::Op::Fflush;
+        emit(op, static_cast<std::uint32_t>(expr_.strings_.size() - 1),
+             static_cast<std::uint8_t>(count));
+        expr_.prints_ = true;
     }
 
     void parseCall(const std::string& name, std::size_t start) {
+        if (name == "printf") {
+            parsePrintf(start);
+            return;
+        }
+        if (name == "fprintf" || name == "fopen" || name == "fclose" || name == "fflush") {
+            parseFileCall(name);
+            return;
+        }
         const FunctionInfo* fn = nullptr;
         for (const auto& f : kFunctions)
             if (name == f.name) fn = &f;
@@ -416,7 +633,7 @@ class ExpressionCompiler {
         skipSpace();
         if (!(pos_ < text_.size() && text_[pos_] == ')')) {
             do {
-                parseOr();
+                parseTernary();
                 if (failed_) return;
                 ++count;
             } while (accept(","));
@@ -436,6 +653,11 @@ class ExpressionCompiler {
         } else if (name == "nran") {
             emit(Expression::Op::Nran);
             expr_.usesRandom_ = true;
+        } else if (name == "bran" || name == "biran" || name == "srand") {
+            emit(name == "bran"    ? Expression::Op::Bran
+                 : name == "biran" ? Expression::Op::Biran
+                                   : Expression::Op::Srand);
+            expr_.usesRandom_ = true;
         } else {
             emit(fn->arity == 1 ? Expression::Op::Call1 : Expression::Op::Call2, 0, fn->id);
         }
@@ -448,12 +670,32 @@ class ExpressionCompiler {
             switch (in.op) {
                 case Expression::Op::Const:
                 case Expression::Op::Var:
+                case Expression::Op::Load:
                     ++depth;
+                    break;
+                case Expression::Op::Fopen:
+                    ++depth;
+                    break;
+                case Expression::Op::Fprintf:
+                    depth -= in.fn;
+                    break;
+                case Expression::Op::Fclose:
+                case Expression::Op::Fflush:
+                    break;
+                case Expression::Op::Printf:
+                    depth += 1 - in.fn;
+                    break;
+                case Expression::Op::Select:
+                    depth -= 2;
+                    break;
+                case Expression::Op::Element:
+                    depth -= static_cast<int>(expr_.arrays_[in.arg].dims.size()) - 1;
                     break;
                 case Expression::Op::Neg:
                 case Expression::Op::Not:
                 case Expression::Op::Call1:
                 case Expression::Op::Ran:
+                case Expression::Op::Srand:
                 case Expression::Op::Jump:
                     break;
                 case Expression::Op::JumpIfFalse:
@@ -491,6 +733,11 @@ class ExpressionCompiler {
 Expression compileExpression(std::string_view text, const SourceLocation& loc,
                              const ExpressionScope& scope, DiagnosticList& diags) {
     return ExpressionCompiler(text, loc, scope, diags).compile();
+}
+
+Expression compileElementAddress(std::string_view text, const SourceLocation& loc,
+                                 const ExpressionScope& scope, DiagnosticList& diags) {
+    return ExpressionCompiler(text, loc, scope, diags).compileAddress();
 }
 
 double evaluateConstant(std::string_view text, const SourceLocation& loc,
@@ -531,7 +778,7 @@ static double apply1(std::uint8_t fn, double x) {
         case FnCeil:
             return std::ceil(x);
         case FnTrunc:
-            return std::trunc(x);
+            return std::floor(x + 0.5);  // cpfg's trunc rounds to the nearest whole number
         case FnSign:
             return x > 0 ? 1.0 : (x < 0 ? -1.0 : 0.0);
     }
@@ -548,6 +795,70 @@ static double apply2(std::uint8_t fn, double a, double b) {
             return std::max(a, b);
     }
     return 0;
+}
+
+// A gamma(shape, 1) deviate (Marsaglia and Tsang), from uniform numbers.
+template <class Uniform>
+static double gammaDeviate(double shape, Uniform& uniform) {
+    if (shape < 1) {
+        double u = uniform();
+        return gammaDeviate(shape + 1, uniform) * std::pow(u > 0 ? u : 1e-300, 1 / shape);
+    }
+    const double d = shape - 1.0 / 3, c = 1 / std::sqrt(9 * d);
+    for (int tries = 0; tries < 1000; ++tries) {
+        double u1 = uniform(), u2 = uniform();
+        if (u1 < 1e-300) u1 = 1e-300;
+        double x = std::sqrt(-2.0 * std::log(u1)) * std::cos(2 * 3.14159265358979323846 * u2);
+        double v = 1 + c * x;
+        if (v <= 0) continue;
+        v = v * v * v;
+        double u = uniform();
+        if (u > 0 && std::log(u) < 0.5 * x * x + d - d * v + d * std::log(v)) return d * v;
+    }
+    return d;
+}
+
+// C's printf conversions applied to doubles: %d %i %c %o %x %u take the value as an
+// integer, %e %f %g as a double; %% is a percent sign.
+std::string formatPrintf(std::string_view format, std::span<const double> values) {
+    std::string out;
+    std::size_t next = 0;
+    for (std::size_t i = 0; i < format.size(); ++i) {
+        if (format[i] != '%') {
+            out += format[i];
+            continue;
+        }
+        std::size_t start = i++;
+        while (i < format.size() && std::strchr("-+ #0123456789.lh", format[i])) ++i;
+        if (i >= format.size()) {
+            out += format.substr(start);
+            break;
+        }
+        char conv = format[i];
+        if (conv == '%') {
+            out += '%';
+            continue;
+        }
+        std::string spec(format.substr(start, i - start));
+        std::erase_if(spec, [](char c) { return c == 'l' || c == 'h'; });
+        double v = next < values.size() ? values[next++] : 0.0;
+        char buf[512];
+        if (std::strchr("diouxXc", conv)) {
+            spec += std::strchr("di", conv) ? "lld" : conv == 'c' ? "c" : std::string("ll") + conv;
+            if (conv == 'c')
+                std::snprintf(buf, sizeof buf, spec.c_str(), static_cast<int>(v));
+            else
+                std::snprintf(buf, sizeof buf, spec.c_str(), static_cast<long long>(v));
+        } else if (std::strchr("eEfFgGaA", conv)) {
+            spec += conv;
+            std::snprintf(buf, sizeof buf, spec.c_str(), v);
+        } else {
+            out += format.substr(start, i - start + 1);
+            continue;
+        }
+        out += buf;
+    }
+    return out;
 }
 
 void Expression::findShape() {
@@ -626,15 +937,27 @@ double Expression::run(std::span<const double> slots, const EvalContext* ctx) co
                 --sp;
                 break;
             case Op::Div:
-                if (st[sp] == 0) throw Error(location_, "division by zero in '" + text_ + "'");
+                // cpfg divides by 1 instead, with a warning.
+                if (st[sp] == 0) {
+                    if (ctx && ctx->print && *ctx->print)
+                        (*ctx->print)(Diagnostic{Severity::Warning, location_,
+                                                 "division by zero in '" + text_ +
+                                                     "'; dividing by 1 instead (as cpfg)"}
+                                          .toString() +
+                                      "\n");
+                    st[sp] = 1;
+                }
                 st[sp - 1] /= st[sp];
                 --sp;
                 break;
-            case Op::Mod:
-                if (st[sp] == 0) throw Error(location_, "modulo by zero in '" + text_ + "'");
-                st[sp - 1] = std::fmod(st[sp - 1], st[sp]);
+            case Op::Mod: {
+                // cpfg's % works on whole numbers: both operands are truncated first.
+                double a = std::trunc(st[sp - 1]), b = std::trunc(st[sp]);
+                if (b == 0) throw Error(location_, "modulo by zero in '" + text_ + "'");
+                st[sp - 1] = std::fmod(a, b);
                 --sp;
                 break;
+            }
             case Op::Pow:
                 st[sp - 1] = std::pow(st[sp - 1], st[sp]);
                 --sp;
@@ -719,6 +1042,104 @@ double Expression::run(std::span<const double> slots, const EvalContext* ctx) co
                 break;
             case Op::Pop:
                 --sp;
+                break;
+            case Op::Load:
+                if (!ctx || !ctx->state)
+                    throw Error(location_, "'" + text_ + "' reads a variable where none exists");
+                st[++sp] = ctx->state[in.arg];
+                break;
+            case Op::Fopen:
+            case Op::Fprintf:
+            case Op::Fclose:
+            case Op::Fflush: {
+                if (!ctx || !ctx->files)
+                    throw Error(location_, "'" + text_ +
+                                               "' writes a file where files cannot be "
+                                               "written");
+                if (in.op == Op::Fopen) {
+                    // The parser marks the mode: '+' appends, '=' truncates.
+                    const std::string& name = strings_[in.arg];
+                    st[++sp] = ctx->files->open(name.substr(1), name[0] == '+', location_);
+                } else if (in.op == Op::Fprintf) {
+                    sp -= in.fn;
+                    ctx->files->write(st[sp], formatPrintf(strings_[in.arg], {st + sp + 1, in.fn}),
+                                      location_);
+                    st[sp] = 0;
+                } else {
+                    if (in.op == Op::Fclose)
+                        ctx->files->close(st[sp], location_);
+                    else
+                        ctx->files->flush(st[sp], location_);
+                    st[sp] = 0;
+                }
+                break;
+            }
+            case Op::Printf: {
+                sp -= in.fn;
+                if (ctx && ctx->print && *ctx->print)
+                    (*ctx->print)(formatPrintf(strings_[in.arg], {st + sp + 1, in.fn}));
+                st[++sp] = 0;
+                break;
+            }
+            case Op::Select:
+                st[sp - 2] = st[sp - 2] != 0 ? st[sp - 1] : st[sp];
+                sp -= 2;
+                break;
+            case Op::Bran: {
+                double a = st[sp - 1], b = st[sp];
+                if (!(a > 0) || !(b > 0))
+                    throw Error(location_, "bran(a, b) needs a > 0 and b > 0 in '" + text_ + "'");
+                double x = gammaDeviate(a, uniform), y = gammaDeviate(b, uniform);
+                st[sp - 1] = x + y > 0 ? x / (x + y) : 0.5;
+                --sp;
+                break;
+            }
+            case Op::Biran: {
+                double count = std::floor(st[sp - 1]), p = st[sp];
+                if (!(count >= 0) || count > 1e7)
+                    throw Error(location_,
+                                "biran(n, p) needs n from 0 to 10000000 in '" + text_ + "'");
+                double hits = 0;
+                for (double k = 0; k < count; ++k) hits += uniform() < p ? 1 : 0;
+                st[sp - 1] = hits;
+                --sp;
+                break;
+            }
+            case Op::Element: {
+                const ArrayRef& a = arrays_[in.arg];
+                std::size_t n = a.dims.size();
+                sp -= static_cast<int>(n) - 1;
+                std::size_t offset = 0;
+                for (std::size_t d = 0; d < n; ++d) {
+                    // cpfg: a fractional subscript is truncated; one out of range is
+                    // clamped to the nearest element, with a warning.
+                    double v = std::trunc(st[sp + static_cast<int>(d)]);
+                    double last = a.dims[d] - 1.0;
+                    double used = std::isnan(v) ? 0 : std::clamp(v, 0.0, last);
+                    if (used != v && ctx && ctx->print && *ctx->print)
+                        (*ctx->print)(Diagnostic{Severity::Warning, location_,
+                                                 "subscript " + std::to_string(d + 1) + " of " +
+                                                     a.name + " is " + formatNumber(v) +
+                                                     ", out of range; using " + formatNumber(used)}
+                                          .toString() +
+                                      "\n");
+                    offset = offset * a.dims[d] + static_cast<std::size_t>(used);
+                }
+                std::uint32_t slot = a.base + static_cast<std::uint32_t>(offset);
+                if (in.fn == 1) {
+                    st[sp] = slot;
+                } else {
+                    if (!ctx || !ctx->state)
+                        throw Error(location_, "'" + text_ + "' reads an array where none exists");
+                    st[sp] = ctx->state[slot];
+                }
+                break;
+            }
+            case Op::Srand:
+                if (!ctx || !ctx->reseed)
+                    throw Error(location_, "srand() used where no random stream exists");
+                ctx->reseed(st[sp]);
+                st[sp] = 0;
                 break;
         }
     }

@@ -102,6 +102,20 @@ bool LSystem::isParametric() const {
     return false;
 }
 
+bool LSystem::hasSideEffects() const {
+    for (const auto* list : {&productions, &decomposition, &homomorphism}) {
+        for (const auto& p : *list) {
+            if (p.hasBlocks()) return true;
+            if (p.condition && p.condition->prints()) return true;
+            if (p.probability && p.probability->prints()) return true;
+            for (const auto& m : p.successor)
+                for (const auto& a : m.args)
+                    if (a.prints()) return true;
+        }
+    }
+    return false;
+}
+
 std::ostream& operator<<(std::ostream& os, const ViewSettings& v) {
     return os << "angle increment: " << formatNumber(v.angleDegrees)
               << "\nstep length: " << formatNumber(v.stepLength)

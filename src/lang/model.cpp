@@ -75,8 +75,10 @@ void parseInto(std::string_view text, const ParseOptions& options, ParserTarget&
                DiagnosticList& diagnostics) {
     DiagnosticList diags;
     SourceText src;
-    if (prepareSource(text, options.fileName, src, diags))
+    if (prepareSource(text, options.fileName, src, diags)) {
+        joinBlockLines(src);
         parsing::Parser(src, options, diags, target).run();
+    }
     for (Diagnostic d : diags.items()) {
         completeEnd(d.location, src);
         diagnostics.add(std::move(d));

@@ -34,6 +34,40 @@ void ModelBuilder::axiom(ModuleString axiom, const SourceLocation& location) {
     axiomLocation_ = location;
 }
 
+void ModelBuilder::deferredAxiomArgument(std::size_t module, std::size_t param, Expression value) {
+    model_.lsystem.axiomArguments.push_back({module, param, std::move(value)});
+}
+
+void ModelBuilder::globalBlock(GlobalBlock which, Block block, const SourceLocation& where) {
+    LSystem& ls = model_.lsystem;
+    Block& slot = which == GlobalBlock::Start       ? ls.startBlock
+                  : which == GlobalBlock::StartEach ? ls.startEachBlock
+                  : which == GlobalBlock::EndEach   ? ls.endEachBlock
+                                                    : ls.endBlock;
+    if (!slot.empty()) {
+        const char* name = which == GlobalBlock::Start       ? "start"
+                           : which == GlobalBlock::StartEach ? "starteach"
+                           : which == GlobalBlock::EndEach   ? "endeach"
+                                                             : "end";
+        diags_.error(where, std::string("a second '") + name + ":' block");
+        return;
+    }
+    slot = std::move(block);
+}
+
+void ModelBuilder::stateVariables(std::vector<std::string> names,
+                                  std::map<std::string, ArrayShape> arrays,
+                                  std::vector<std::pair<std::uint32_t, double>> initialValues) {
+    LSystem& ls = model_.lsystem;
+    ls.stateNames = std::move(names);
+    ls.arrays = std::move(arrays);
+    ls.initialState = std::move(initialValues);
+}
+
+void ModelBuilder::ring(const SourceLocation&) {
+    model_.lsystem.ring = true;
+}
+
 void ModelBuilder::production(ProductionGroup group, Production production) {
     LSystem& ls = model_.lsystem;
     (group == ProductionGroup::Decomposition  ? ls.decomposition

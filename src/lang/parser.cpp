@@ -10,6 +10,7 @@
 #include <cctype>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <sstream>
 
@@ -73,6 +74,11 @@ const std::vector<std::string> kKeywords = {
     "colour map",
     "surface",
     "spline subdivisions",
+    "start",
+    "starteach",
+    "endeach",
+    "end",
+    "define",
 };
 
 // `-->` wins; then the book's `→`; then `->` (not the `<-` `>` of a context like `<->`).
@@ -121,6 +127,7 @@ void Parser::run() {
         bool fromFile = !options_.defines.count(k) && line != defineLines_.end();
         target_.define(k, v, fromFile ? src_.at(line->second, 1) : SourceLocation{});
     }
+    parseGlobalBlocks();
     for (const auto& line : src_.lines) {
         parseLine(line);
         if (errorCount() >= kMaxErrors) {
@@ -281,10 +288,20 @@ void Parser::parseLine(const SourceLine& line) {
         ended_ = true;
         return;
     }
-    if (word == "decomposition" || word == "homomorphism") {
-        section_ = word == "decomposition" ? Section::Decomposition : Section::Homomorphism;
-        currentTable_ = -1;
+    if (word == "ring lsystem" || word == "ring lsystem:") {
+        target_.ring(at(line, firstNonBlank(line.text)));
         return;
+    }
+    // `decomposition`, `homomorphism`, with or without a colon, optionally followed by
+    // `no warnings` (graftal never prints the maximum-depth warning anyway).
+    for (const char* section : {"decomposition", "homomorphism"}) {
+        std::string s(section);
+        if (word == s || word == s + ":" || word == s + ": no warnings" ||
+            word == s + " no warnings" || word == s + ":no warnings") {
+            section_ = s == "decomposition" ? Section::Decomposition : Section::Homomorphism;
+            currentTable_ = -1;
+            return;
+        }
     }
     std::size_t colon = t.find(':', start);
     if (colon != std::string_view::npos) {
@@ -360,7 +377,9 @@ void Parser::parseDirective(const SourceLine& line, const std::string& kw, std::
         at(line, valueStart +
                      (firstNonBlank(value) == std::string_view::npos ? 0 : firstNonBlank(value)));
     double v = 0;
-    if (kw == "lsystem") {
+    if (isGlobalBlockKeyword(kw)) {
+        return;  // read by parseGlobalBlocks
+    } else if (kw == "lsystem") {
         target_.name(std::string(trimView(value)), loc);
     } else if (kw == "derivation length") {
         if (!constantValue(line, valueStart, v)) return;
@@ -516,8 +535,15 @@ void Parser::parseAxiom(const SourceLine& line, std::size_t valueStart) {
     }
     ExpressionScope scope;
     scope.defines = &defines_;
+    scope.state = &globals_;
+    scope.arrays = &arrays_;
     std::vector<double> args;
     ModuleString axiom;
+    struct Deferred {
+        std::size_t module, param;
+        Expression value;
+    };
+    std::vector<Deferred> deferred;
     for (const auto& tok : toks) {
         args.clear();
         for (const auto& a : tok.args) {
@@ -526,6 +552,12 @@ void Parser::parseAxiom(const SourceLine& line, std::size_t valueStart) {
             Expression e = compileExpression(a.text, aloc, scope, local);
             for (const auto& d : local.items()) diags_.add(d);
             if (e.empty()) return;
+            if (e.usesState() || e.prints()) {
+                // Start: runs first; the derivation evaluates these.
+                deferred.push_back({axiom.size(), args.size(), std::move(e)});
+                args.push_back(0);
+                continue;
+            }
             try {
                 args.push_back(e.evaluate({}));
             } catch (const Error& err) {
@@ -536,6 +568,7 @@ void Parser::parseAxiom(const SourceLine& line, std::size_t valueStart) {
         axiom.push(tok.symbol, args);
     }
     target_.axiom(std::move(axiom), loc);
+    for (auto& d : deferred) target_.deferredAxiomArgument(d.module, d.param, std::move(d.value));
     checkBrackets(toks, line, "axiom");
 }
 
@@ -581,6 +614,79 @@ void Parser::parseIgnore(const SourceLine& line, const std::string& kw, std::siz
     std::vector<Symbol> listed;
     for (const auto& t : toks) listed.push_back(t.symbol);
     target_.ignore(listed, kw == "consider", loc);
+}
+
+bool Parser::isGlobalBlockKeyword(const std::string& kw) {
+    return kw == "start" || kw == "starteach" || kw == "endeach" || kw == "end" || kw == "define";
+}
+
+void Parser::parseGlobalBlocks() {
+    // Arrays first: the blocks may use them wherever the lines stand.
+    for (bool arrays : {true, false}) {
+        for (const auto& line : src_.lines) {
+            std::string_view t = line.text;
+            std::size_t start = firstNonBlank(t);
+            if (start == std::string_view::npos) continue;
+            std::size_t colon = t.find(':', start);
+            if (colon == std::string_view::npos) continue;
+            std::string kw = normaliseKeyword(t.substr(start, colon - start));
+            if (!isGlobalBlockKeyword(kw) || (kw == "define") != arrays) continue;
+            parseGlobalBlock(line, kw, colon + 1);
+        }
+    }
+}
+
+bool Parser::parseBlockAt(const SourceLine& line, std::size_t open, std::size_t close,
+                          BlockScope& scope, Block& out) {
+    std::string_view inside = std::string_view(line.text).substr(open + 1, close - open - 1);
+    std::function<SourceLocation(std::size_t)> locate = [&](std::size_t i) {
+        return at(line, open + 1 + i);
+    };
+    return parseBlock(inside, locate, scope, out, diags_);
+}
+
+bool Parser::parseGlobalBlock(const SourceLine& line, const std::string& kw,
+                              std::size_t valueStart) {
+    std::string_view t = line.text;
+    std::size_t open = t.find_first_not_of(" \t\r\f\v", valueStart);
+    if (open == std::string_view::npos || t[open] != '{') {
+        diags_.error(
+            at(line, open == std::string_view::npos ? t.size() : open),
+            "expected a block '{ ... }' after '" +
+                std::string(trimView(t.substr(firstNonBlank(t), valueStart - firstNonBlank(t)))) +
+                "'");
+        return false;
+    }
+    std::size_t close = matchingBrace(t, open);
+    if (close == std::string_view::npos) {
+        diags_.error(at(line, open), "expected '}' to close this block");
+        return false;
+    }
+    if (!isBlank(t.substr(close + 1))) {
+        diags_.error(at(line, close + 1), "unexpected text after the block");
+        return false;
+    }
+    if (kw == "define") {
+        std::string_view inside = t.substr(open + 1, close - open - 1);
+        std::function<SourceLocation(std::size_t)> locate = [&](std::size_t i) {
+            return at(line, open + 1 + i);
+        };
+        ArrayState state{&defines_, &arrays_, &stateNames_, &initialState_};
+        return parseArrayDeclarations(inside, locate, state, diags_);
+    }
+    GlobalBlock which = kw == "start"       ? GlobalBlock::Start
+                        : kw == "starteach" ? GlobalBlock::StartEach
+                        : kw == "endeach"   ? GlobalBlock::EndEach
+                                            : GlobalBlock::End;
+    BlockScope scope;
+    scope.defines = &defines_;
+    scope.state = &globals_;
+    scope.stateNames = &stateNames_;
+    scope.arrays = &arrays_;
+    Block block;
+    if (!parseBlockAt(line, open, close, scope, block)) return false;
+    target_.globalBlock(which, std::move(block), at(line, firstNonBlank(t)));
+    return true;
 }
 
 std::size_t Parser::errorCount() const {

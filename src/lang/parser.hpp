@@ -12,6 +12,7 @@
 #include "graftal/parser_target.hpp"
 #include "module_lexer.hpp"
 #include "source_text.hpp"
+#include "statement_parser.hpp"
 
 namespace graftal::parsing {
 
@@ -71,6 +72,15 @@ class Parser {
     void checkBrackets(const std::vector<ModuleToken>& toks, const SourceLine& line,
                        const char* what);
 
+    // Start:, StartEach:, EndEach:, End: blocks (read before everything else, so that
+    // their variables are global wherever the lines stand).
+    void parseGlobalBlocks();
+    bool parseGlobalBlock(const SourceLine& line, const std::string& kw, std::size_t valueStart);
+    // A `{ ... }` at text[open] of `line` into `out`; false after reporting.
+    bool parseBlockAt(const SourceLine& line, std::size_t open, std::size_t close,
+                      BlockScope& scope, Block& out);
+    static bool isGlobalBlockKeyword(const std::string& kw);
+
     void parseIgnore(const SourceLine& line, const std::string& kw, std::size_t valueStart);
 
     // View settings for 3D pictures (view_parser.cpp).
@@ -100,6 +110,12 @@ class Parser {
     std::vector<std::string> tableNames_;         // in declaration order
     bool scheduleRepeats_ = false;
     std::map<std::string, int> defineLines_;
+    // The state blocks and expressions share (see LSystem::stateNames); handed to the
+    // target once everything is read.
+    std::map<std::string, std::uint32_t> globals_ = {{"Q", 0}, {"Z", 1}};
+    std::vector<std::string> stateNames_ = {"Q", "Z"};
+    std::map<std::string, ArrayShape> arrays_;
+    std::vector<std::pair<std::uint32_t, double>> initialState_;
     bool sawLsystemHeader_ = false;
     bool sawAxiom_ = false;
     int axiomLine_ = 0;

@@ -85,32 +85,74 @@ void Parser::parseProduction(const SourceLine& line, Arrow arrow) {
     if (gt != std::string_view::npos &&
         !parsePatterns(line, gt + 1, patEnd, prod.right, formals, "right context", true))
         return;
-    for (const auto* part : {&prod.left, &prod.predecessor}) {
-        for (const auto& m : *part) {
-            if (m.symbol == '[' || m.symbol == ']') {
-                diags_.error(m.location,
-                             "brackets may not appear in a predecessor or left "
-                             "context");
-                return;
-            }
+    // A predecessor's brackets are matched literally (cpfg); a left context cannot enter
+    // branches.
+    for (const auto& m : prod.left) {
+        if (m.symbol == '[' || m.symbol == ']') {
+            diags_.error(m.location, "brackets may not appear in a left context");
+            return;
         }
+    }
+    if (prod.predecessor.front().symbol == '[' || prod.predecessor.front().symbol == ']') {
+        diags_.error(prod.predecessor.front().location,
+                     "a predecessor cannot start with a bracket");
+        return;
     }
     prod.slotCount = static_cast<int>(formals.size());
 
+    // The production sees the globals and its own variables (created by its blocks).
+    std::map<std::string, std::uint32_t> state = globals_;
+    BlockScope blockScope;
+    blockScope.formals = &formals;
+    blockScope.defines = &defines_;
+    blockScope.state = &state;
+    blockScope.stateNames = &stateNames_;
+    blockScope.arrays = &arrays_;
+    blockScope.owner = " (production on line " + std::to_string(line.number) + ")";
     ExpressionScope scope;
     scope.variables = formals;
     scope.defines = &defines_;
+    scope.state = &state;
+    scope.arrays = &arrays_;
     if (condColon != std::string_view::npos) {
-        std::string_view cond = lhs.substr(condColon + 1);
+        // `: { pre } condition { post }`, each part optional.
+        std::size_t condFrom = condColon + 1, condTo = lhs.size();
+        std::size_t first = lhs.find_first_not_of(" \t\r\f\v", condFrom);
+        if (first != std::string_view::npos && lhs[first] == '{') {
+            std::size_t close = matchingBrace(lhs, first);
+            if (close == std::string_view::npos) {
+                diags_.error(at(line, first), "expected '}' to close this block");
+                return;
+            }
+            if (!parseBlockAt(line, first, close, blockScope, prod.preBlock)) return;
+            condFrom = close + 1;
+        }
+        if (std::size_t open = lhs.find('{', condFrom); open != std::string_view::npos) {
+            std::size_t close = matchingBrace(lhs, open);
+            if (close == std::string_view::npos) {
+                diags_.error(at(line, open), "expected '}' to close this block");
+                return;
+            }
+            if (!isBlank(lhs.substr(close + 1))) {
+                diags_.error(at(line, close + 1),
+                             "unexpected text after the block: expected the arrow '-->'");
+                return;
+            }
+            condTo = open;
+        }
+        std::string_view cond = lhs.substr(condFrom, condTo - condFrom);
         std::size_t off = firstNonBlank(cond);
         if (off == std::string_view::npos || trimView(cond) == "*") {
             // `: *` is cpfg's "no condition"
         } else {
             Expression e =
-                compileExpression(trimView(cond), at(line, condColon + 1 + off), scope, diags_);
+                compileExpression(trimView(cond), at(line, condFrom + off), scope, diags_);
             if (e.empty()) return;
             prod.condition = std::move(e);
         }
+        if (condTo != lhs.size() &&
+            !parseBlockAt(line, condTo, matchingBrace(lhs, condTo), blockScope, prod.postBlock))
+            return;
     }
 
     // Right of the arrow: successor [: probability]
@@ -131,6 +173,12 @@ void Parser::parseProduction(const SourceLine& line, Arrow arrow) {
         prod.probability = std::move(e);
     }
     std::string_view succ = t.substr(succFrom, succTo - succFrom);
+    if (std::size_t again = succ.find("-->"); again != std::string_view::npos) {
+        diags_.error(at(line, succFrom + again),
+                     "a second arrow '-->' in this production (a line starting with a TAB "
+                     "continues the line before it)");
+        return;
+    }
     if (isBlank(succ)) {
         diags_.error(at(line, succFrom),
                      "expected a successor after the arrow ('*' for "
@@ -156,20 +204,16 @@ void Parser::parseProduction(const SourceLine& line, Arrow arrow) {
         }
         checkBrackets(toks, line, "successor");
     }
-    if (section_ != Section::Main && prod.hasContext()) {
-        diags_.error(
-            prod.location,
-            std::string(section_ == Section::Decomposition ? "decomposition" : "homomorphism") +
-                " productions are context-free: remove the context");
+    // cpfg allows contexts in homomorphism productions, not in decomposition ones.
+    if (section_ == Section::Decomposition && prod.hasContext()) {
+        diags_.error(prod.location,
+                     "decomposition productions are context-free: remove the context");
         return;
     }
+    // A ']' without its '[' walks out of the branch the predecessor stands in.
     int depth = 0;
     for (const auto& m : prod.right) {
-        depth += m.symbol == '[' ? 1 : m.symbol == ']' ? -1 : 0;
-        if (depth < 0) {
-            diags_.error(m.location, "unbalanced ']' in the right context");
-            return;
-        }
+        depth += m.symbol == '[' ? 1 : m.symbol == ']' && depth > 0 ? -1 : 0;
     }
     if (depth != 0) {
         diags_.error(prod.location, "unbalanced '[' in the right context");
@@ -222,6 +266,7 @@ void Parser::finish() {
         diags_.error(src_.at(last, 1), "no axiom: expected a line such as 'axiom: F'");
     }
     resolveSchedule();
+    target_.stateVariables(stateNames_, arrays_, initialState_);
     target_.endOfInput(src_.at(src_.lines.empty() ? 1 : src_.lines.back().number, 1));
 }
 

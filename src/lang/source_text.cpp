@@ -1,5 +1,6 @@
 #include "source_text.hpp"
 
+#include <cctype>
 #include <cstdint>
 
 namespace graftal {
@@ -106,6 +107,76 @@ bool prepareSource(std::string_view bytes, const std::string& fileName, SourceTe
     }
     if (!current.empty()) out.lines.push_back({number, std::move(current)});
     return true;
+}
+
+namespace {
+
+// The brace depth at the end of `line` (strings skipped), and whether the first '{' left
+// open stands before a production's arrow (or there is no arrow).
+int openBlockDepth(std::string_view line, bool& beforeArrow) {
+    int depth = 0;
+    bool inString = false;
+    std::size_t firstOpen = std::string_view::npos;
+    std::vector<std::size_t> open;
+    for (std::size_t i = 0; i < line.size(); ++i) {
+        char c = line[i];
+        if (inString) {
+            if (c == '\\')
+                ++i;
+            else if (c == '"')
+                inString = false;
+            continue;
+        }
+        if (c == '"') {
+            inString = true;
+        } else if (c == '{') {
+            open.push_back(i);
+            ++depth;
+        } else if (c == '}' && depth > 0) {
+            open.pop_back();
+            --depth;
+        }
+    }
+    if (!open.empty()) firstOpen = open.front();
+    std::size_t arrow = line.find("-->");
+    beforeArrow = arrow == std::string_view::npos || firstOpen < arrow;
+    return depth;
+}
+
+bool startsWithAxiom(std::string_view line) {
+    std::size_t a = line.find_first_not_of(" \t");
+    if (a == std::string_view::npos) return false;
+    std::string head;
+    for (std::size_t i = a; i < line.size() && i < a + 5; ++i)
+        head += static_cast<char>(std::tolower(static_cast<unsigned char>(line[i])));
+    return head == "axiom";
+}
+
+}  // namespace
+
+void joinBlockLines(SourceText& text) {
+    std::vector<SourceLine> out;
+    for (std::size_t i = 0; i < text.lines.size(); ++i) {
+        SourceLine line = std::move(text.lines[i]);
+        std::vector<SourceText::Segment> segments{{0, line.number}};
+        const bool axiom = startsWithAxiom(line.text);
+        while (i + 1 < text.lines.size()) {
+            bool beforeArrow = false;
+            bool openBlock = !axiom && openBlockDepth(line.text, beforeArrow) > 0 && beforeArrow;
+            // cpfg: a line starting with a TAB continues the line before it.
+            const std::string& next = text.lines[i + 1].text;
+            bool continued = !next.empty() && next[0] == '\t' &&
+                             line.text.find_first_not_of(" \t\r\f\v") != std::string::npos;
+            if (!openBlock && !continued) break;
+            SourceLine& more = text.lines[++i];
+            line.text += ' ';
+            segments.push_back({line.text.size(), more.number});
+            line.text += more.text;
+        }
+        if (segments.size() > 1) text.joined[line.number] = std::move(segments);
+        out.push_back(std::move(line));
+    }
+    text.lines = std::move(out);
 }
 
 }  // namespace graftal

@@ -25,6 +25,7 @@ DerivationOptions derivationOptions(const Model& model, const DeriveRequest& req
     opts.queryResolver = turtleQueryResolver(model.view);
     opts.progress = request.progress;
     opts.cancel = request.cancel;
+    opts.print = request.print;
     return opts;
 }
 

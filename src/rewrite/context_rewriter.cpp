@@ -157,7 +157,8 @@ std::uint8_t ContextRewriter::cellFor(const std::vector<Production>& productions
                 g.sum += w;
             }
         }
-        if (g.sum <= 0) return 0;
+        // cpfg: when every applicable weight is 0, the first applicable production applies.
+        if (g.sum <= 0) return resultOf(productions, cands[k]);
         std::size_t id = 0;
         while (id < groups_.size() &&
                (groups_[id].sum != g.sum || groups_[id].entries != g.entries))

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/parallel.hpp"
+#include "output_files.hpp"
 #include "rewriting_engine.hpp"
 
 namespace graftal {
@@ -58,6 +59,26 @@ Derivation::Derivation(LSystem lsystem, DerivationOptions options)
     if (!lsystem_.decomposition.empty())
         decomposition_ =
             std::make_unique<RewritingEngine>(lsystem_, lsystem_.decomposition, seed, threads);
+    // Q and Z, then the variables, all 0 until Start: runs.
+    state_.assign(lsystem_.stateNames.size(), 0.0);
+    state_[1] = lsystem_.derivationLength;
+    for (const auto& [slot, value] : lsystem_.initialState) state_[slot] = value;
+    files_ = std::make_unique<ModelOutputFiles>(std::filesystem::path(lsystem_.file).parent_path());
+    rules_->setState(state_.data(), &options_.print, files_.get());
+    if (decomposition_) decomposition_->setState(state_.data(), &options_.print, files_.get());
+    if (!lsystem_.startBlock.empty()) rules_->runBlock(lsystem_.startBlock, nullptr, 0, 0);
+    if (!lsystem_.axiomArguments.empty()) {
+        // Axiom parameters that read variables see what Start: left in them.
+        auto& params = current_->rawParams();
+        const auto& starts = current_->paramStarts();
+        for (const auto& a : lsystem_.axiomArguments) {
+            EvalContext ctx;
+            ctx.state = state_.data();
+            ctx.print = &options_.print;
+            ctx.files = files_.get();
+            params[starts[a.module] + a.param] = a.value.evaluate({}, &ctx);
+        }
+    }
     if (rules_->parametric() && !current_->hasParameters()) {
         // Parametric strings always carry offsets, so every module reads the same way.
         current_->rawParamStart().assign(current_->size() + 1, 0);
@@ -179,17 +200,28 @@ void Derivation::step() {
     ModuleString pruned;
     const ModuleString& source =
         lsystem_.usesCut() && pruneCuts(*current_, pruned) ? pruned : *current_;
+    state_[0] = stepNumber;
+    if (!lsystem_.startEachBlock.empty())
+        rules_->runBlock(lsystem_.startEachBlock, nullptr, stepNumber, 0);
     rules_->step(source, *next_, stepNumber, lsystem_.tableForStep(stepNumber),
                  options_.memoryLimit);
     options_.cancel.check();
     std::swap(current_, next_);
     ++steps_;
     afterStep(stepNumber);
+    if (!lsystem_.endEachBlock.empty())
+        rules_->runBlock(lsystem_.endEachBlock, nullptr, stepNumber, 1);
     if (options_.progress) options_.progress(stepNumber, current_->size());
 }
 
 void Derivation::run(int steps) {
     for (int i = 0; i < steps; ++i) step();
+}
+
+void Derivation::finish() {
+    if (finished_ || steps_ == 0) return;
+    finished_ = true;
+    if (!lsystem_.endBlock.empty()) rules_->runBlock(lsystem_.endBlock, nullptr, steps_ + 1, 0);
 }
 
 namespace {}  // namespace
@@ -204,6 +236,7 @@ ModuleString derive(const Model& model, int steps, DerivationOptions options) {
 ModuleString derive(const LSystem& lsystem, int steps, DerivationOptions options) {
     Derivation d(lsystem, options);
     d.run(steps < 0 ? lsystem.derivationLength : steps);
+    d.finish();
     return d.take();
 }
 
@@ -213,6 +246,11 @@ ModuleString applyHomomorphism(const LSystem& lsystem, const ModuleString& modul
     if (lsystem.homomorphism.empty()) return s;
     RewritingEngine engine(lsystem, lsystem.homomorphism, options.seed.value_or(lsystem.seed),
                            options.threads ? options.threads : defaultThreadCount());
+    // The homomorphism sees the variables as they start (it runs outside the derivation).
+    std::vector<double> state(lsystem.stateNames.size(), 0.0);
+    state[1] = lsystem.derivationLength;
+    for (const auto& [slot, value] : lsystem.initialState) state[slot] = value;
+    engine.setState(state.data(), &options.print);
     rewriteRecursively(engine, s, lsystem.homomorphismDepth, 0, options.memoryLimit);
     return s;
 }

@@ -1,6 +1,7 @@
 #include "rewriting_engine.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <numeric>
@@ -36,7 +37,18 @@ void bind(const ModulePattern& p, const ModuleString& s, std::size_t j, double* 
 struct RewritingEngine::Draws {
     const RewritingEngine* engine;
     std::uint64_t step, position, next;
-    double operator()() { return uniformAt(engine->seed_, step, position, next++); }
+    bool reseeded = false;
+    std::uint64_t seed = 0;
+    double operator()() {
+        return uniformAt(reseeded ? seed : engine->seed_, step, position, next++);
+    }
+    // srand(x): the same x restarts the same numbers (at this module of this step).
+    void reseed(double x) {
+        reseeded = true;
+        if (!(std::fabs(x) < 9e18)) x = 0;
+        seed = static_cast<std::uint64_t>(static_cast<std::int64_t>(x)) ^ 0x5eed5eed5eed5eedULL;
+        next = 0;
+    }
 };
 
 RewritingEngine::RewritingEngine(const LSystem& ls, const std::vector<Production>& productions,
@@ -49,10 +61,17 @@ RewritingEngine::RewritingEngine(const LSystem& ls, const std::vector<Production
         multiPred_ |= p.predecessor.size() > 1;
         needBrackets_ |= p.hasContext();
         parametric_ |= p.isParametric() || p.condition.has_value();
+        sequential_ |= p.hasBlocks();
+        for (const auto& m : p.successor)
+            for (const auto& a : m.args) sequential_ |= a.prints();
+        sequential_ |=
+            (p.condition && p.condition->prints()) || (p.probability && p.probability->prints());
     }
+    // A block with a condition-less production still needs the generic machinery.
+    parametric_ |= sequential_;
     parametric_ |= ls.isParametric();
     tableCount_ = std::max<std::size_t>(1, ls.tableNames.size());
-    fast_ = !multiPred_ && !parametric_ && !needBrackets_ && !stochastic;
+    fast_ = !multiPred_ && !parametric_ && !needBrackets_ && !stochastic && !sequential_;
     candidates_.assign(tableCount_, std::vector<std::vector<std::uint32_t>>(ls.symbols.size()));
     for (std::uint32_t k = 0; k < productions_.size(); ++k) {
         const Production& p = productions_[k];
@@ -62,7 +81,11 @@ RewritingEngine::RewritingEngine(const LSystem& ls, const std::vector<Production
     }
     if (fast_) buildFastTables();
     buildQuickChoices();
-    if (!fast_ && !multiPred_ && !parametric_) {
+    // The ContextRewriter's branch handling assumes brackets are seen.
+    bool bracketsIgnored = ls.ignored['['] || ls.ignored[']'] || ls.ring;
+    for (const auto& p : productions_)
+        for (const auto& m : p.right) bracketsIgnored |= m.symbol == '=' || m.symbol == ']';
+    if (!fast_ && !multiPred_ && !parametric_ && !bracketsIgnored) {
         context_ = std::make_unique<ContextRewriter>(ls, productions_, candidates_, seed_);
         if (!context_->usable()) context_.reset();
     }
@@ -87,7 +110,7 @@ void RewritingEngine::buildQuickChoices() {
             f.argStart.push_back(static_cast<std::uint32_t>(f.args.size()));
             for (const auto& a : m.args) {
                 f.args.push_back(&a);
-                random |= a.usesRandom();
+                random |= a.needsContext();
             }
         }
         f.direct = !p.hasContext() && p.predecessor.size() == 1 && !random;
@@ -182,6 +205,8 @@ bool RewritingEngine::step(const ModuleString& cur, ModuleString& next, int step
                            std::size_t memoryLimit, const std::vector<std::uint8_t>* activeIn,
                            std::vector<std::uint8_t>* activeOut) {
     table = std::clamp(table, 0, static_cast<int>(tableCount_) - 1);
+    if (sequential_)
+        return stepSequential(cur, next, stepNumber, table, memoryLimit, activeIn, activeOut);
     if (!genericOnly_ && !activeIn && !activeOut && !cur.hasParameters()) {
         if (fast_) return stepFast(cur, next, stepNumber, table, memoryLimit);
         if (context_) return stepContext(cur, next, stepNumber, table, memoryLimit);
@@ -297,8 +322,15 @@ bool RewritingEngine::matchLeft(const Production& p, const ModuleString& s, std:
     int fill = slot + count;
     std::ptrdiff_t j = static_cast<std::ptrdiff_t>(i) - 1;
     auto syms = s.symbols();
+    bool wrapped = false;
     for (std::ptrdiff_t q = static_cast<std::ptrdiff_t>(pat.size()) - 1; q >= 0;) {
-        if (j < 0) return false;
+        if (j < 0) {
+            // A ring's first module is preceded by its last, once round.
+            if (!ls_.ring || wrapped || s.size() == 0) return false;
+            wrapped = true;
+            j = static_cast<std::ptrdiff_t>(s.size()) - 1;
+            continue;
+        }
         auto uj = static_cast<std::size_t>(j);
         Symbol c = syms[uj];
         if (c == '[') {
@@ -336,8 +368,30 @@ bool RewritingEngine::matchRight(const Production& p, const ModuleString& s, std
     auto syms = s.symbols();
     std::uint32_t entered[64];
     int depth = 0;
+    bool wrapped = false;
     for (std::size_t q = 0; q < p.right.size();) {
         const ModulePattern& m = p.right[q];
+        if (m.symbol == '=') {
+            // cpfg: skip the rest of the current branch, up to its ']' (or the string's end).
+            while (j < n && syms[j] != ']') {
+                if (syms[j] == '[') {
+                    std::uint32_t close = brackets_.match(j);
+                    if (close == BracketIndex::kNone) return false;
+                    j = close;
+                }
+                ++j;
+            }
+            ++q;
+            continue;
+        }
+        if (m.symbol == ']' && depth == 0) {
+            // Out of the branch the predecessor stands in: its ']' must come next.
+            while (j < n && syms[j] != ']' && syms[j] != '[' && ls_.ignored[syms[j]]) ++j;
+            if (j >= n || syms[j] != ']') return false;
+            ++j;
+            ++q;
+            continue;
+        }
         if (m.symbol == ']') {
             if (depth == 0) return false;
             std::uint32_t close = brackets_.match(entered[--depth]);
@@ -346,7 +400,12 @@ bool RewritingEngine::matchRight(const Production& p, const ModuleString& s, std
             ++q;
             continue;
         }
-        if (j >= n) return false;
+        if (j >= n) {
+            if (!ls_.ring || wrapped || n == 0) return false;
+            wrapped = true;  // a ring's last module is followed by its first
+            j = 0;
+            continue;
+        }
         Symbol c = syms[j];
         if (m.symbol == '[') {
             if (c == '[') {
@@ -361,6 +420,11 @@ bool RewritingEngine::matchRight(const Production& p, const ModuleString& s, std
                 continue;
             }
             return false;
+        }
+        if ((c == '[' || c == ']') && ls_.ignored[c]) {
+            // consider: without brackets: the context runs through branch ends (cpfg).
+            ++j;
+            continue;
         }
         if (c == '[') {
             std::uint32_t close = brackets_.match(j);
@@ -415,11 +479,71 @@ bool RewritingEngine::matches(const Production& p, const ModuleString& s, std::s
 }
 
 double RewritingEngine::evaluate(const Expression& e, const double* slots, Draws& draws) const {
-    std::span<const double> vars{slots, static_cast<std::size_t>(maxSlots_)};
-    if (!e.usesRandom()) return e.evaluate(vars);
+    return evaluate(e, slots, draws, sequential_);
+}
+
+double RewritingEngine::evaluate(const Expression& e, const double* slots, Draws& draws,
+                                 bool mayPrint) const {
+    std::span<const double> vars;
+    if (slots) vars = {slots, static_cast<std::size_t>(maxSlots_)};
+    if (!e.needsContext()) return e.evaluate(vars);
     EvalContext ctx;
     ctx.uniform = [&draws] { return draws(); };
+    ctx.reseed = [&draws](double x) { draws.reseed(x); };
+    ctx.state = state_;
+    // Only one thread rewrites when the productions print; elsewhere (parallel steps)
+    // warnings are not printed, so the output never depends on the thread count.
+    ctx.print = mayPrint ? print_ : nullptr;
+    ctx.files = mayPrint ? files_ : nullptr;
     return e.evaluate(vars, &ctx);
+}
+
+void RewritingEngine::runStatements(const Block& block, const double* slots, Draws& draws) const {
+    // Loops are bounded so that a model cannot hang the program.
+    constexpr long kMaxIterations = 10'000'000;
+    for (const Statement& st : block) {
+        switch (st.kind) {
+            case Statement::Kind::Assign:
+                state_[st.target] = evaluate(st.value, slots, draws, true);
+                break;
+            case Statement::Kind::AssignElement: {
+                double v = evaluate(st.value, slots, draws, true);
+                state_[static_cast<std::size_t>(evaluate(st.address, slots, draws, true))] = v;
+                break;
+            }
+            case Statement::Kind::Evaluate:
+                evaluate(st.value, slots, draws, true);
+                break;
+            case Statement::Kind::If:
+                if (evaluate(st.value, slots, draws, true) != 0)
+                    runStatements(st.body, slots, draws);
+                else
+                    runStatements(st.elseBody, slots, draws);
+                break;
+            case Statement::Kind::While:
+            case Statement::Kind::DoWhile: {
+                long count = 0;
+                bool first = st.kind == Statement::Kind::DoWhile;
+                while (first || evaluate(st.value, slots, draws, true) != 0) {
+                    first = false;
+                    runStatements(st.body, slots, draws);
+                    if (++count > kMaxIterations)
+                        throw Error(st.value.location(), "the loop ran " +
+                                                             std::to_string(kMaxIterations) +
+                                                             " times without its condition '" +
+                                                             st.value.text() + "' becoming false");
+                }
+                break;
+            }
+        }
+    }
+}
+
+void RewritingEngine::runBlock(const Block& block, const double* slots, int stepNumber,
+                               std::uint64_t position) const {
+    if (!state_) throw Error(SourceLocation{ls_.file, 0, 0}, "blocks need the L-system's state");
+    Draws draws{this, static_cast<std::uint64_t>(stepNumber), position, 1ull << 40};
+    runStatements(block, slots, draws);
 }
 
 std::int32_t RewritingEngine::choose(const ModuleString& s, std::size_t i, std::uint64_t position,
@@ -427,31 +551,47 @@ std::int32_t RewritingEngine::choose(const ModuleString& s, std::size_t i, std::
                                      std::vector<double>& weights) const {
     const auto& cands = candidates_[static_cast<std::size_t>(table)][s.symbol(i)];
     Draws draws{this, static_cast<std::uint64_t>(stepNumber), position, 0};
-    const Production* evaluating = nullptr;  // whose condition or probability is evaluated
+    const Production* evaluating = nullptr;  // whose block, condition or probability runs
     try {
         for (std::size_t k = 0; k < cands.size(); ++k) {
             const Production& p = productions_[cands[k]];
             evaluating = &p;
             if (!matches(p, s, i, slots)) continue;
-            if (p.condition && evaluate(*p.condition, slots, draws) == 0) continue;
-            if (!p.probability) return static_cast<std::int32_t>(cands[k]);
+            if (!p.preBlock.empty()) runStatements(p.preBlock, slots, draws);
+            const bool firstApplies = !p.condition || evaluate(*p.condition, slots, draws) != 0;
+            if (!p.probability) {
+                if (firstApplies) return static_cast<std::int32_t>(cands[k]);
+                continue;
+            }
+            // Without blocks, a stochastic production whose condition fails does not start
+            // the group (the next one does, with the same outcome).
+            if (!firstApplies && !sequential_) continue;
             // A stochastic group: every applicable production with a probability competes,
             // with weights normalised over the applicable ones (as cpfg does).
             weights.assign(cands.size(), 0.0);
             double sum = 0;
+            std::size_t firstApplicable = cands.size();
+            // cpfg runs the pre block and tests the condition of every candidate.
             for (std::size_t r = k; r < cands.size(); ++r) {
                 const Production& q = productions_[cands[r]];
                 evaluating = &q;
                 if (!q.probability) continue;
+                if (r == k && !firstApplies) continue;
                 if (!matches(q, s, i, slots)) continue;
+                if (r != k && !q.preBlock.empty()) runStatements(q.preBlock, slots, draws);
                 if (r != k && q.condition && evaluate(*q.condition, slots, draws) == 0) continue;
+                if (firstApplicable == cands.size()) firstApplicable = r;
                 double w = evaluate(*q.probability, slots, draws);
                 if (w > 0) {
                     weights[r] = w;
                     sum += w;
                 }
             }
-            if (sum <= 0) return kIdentity;
+            // cpfg: when every applicable weight is 0, the first applicable production applies.
+            if (sum <= 0)
+                return firstApplicable == cands.size()
+                           ? kIdentity
+                           : static_cast<std::int32_t>(cands[firstApplicable]);
             double u =
                 uniformAt(seed_, static_cast<std::uint64_t>(stepNumber), position, 1u << 20) * sum;
             std::size_t last = k;
@@ -684,6 +824,55 @@ bool RewritingEngine::stepGeneric(const ModuleString& cur, ModuleString& next, i
             }
         });
     return std::accumulate(rewritten.begin(), rewritten.end(), std::size_t(0)) > 0;
+}
+
+// ---- sequential path: productions with blocks ------------------------------------------
+
+// cpfg's order: each module is rewritten in turn, its pre blocks and conditions run, then
+// the chosen production's post block, then its successor's parameters. The order is the
+// string's, on one thread, whatever the thread count.
+bool RewritingEngine::stepSequential(const ModuleString& cur, ModuleString& next, int stepNumber,
+                                     int table, std::size_t limit,
+                                     const std::vector<std::uint8_t>* activeIn,
+                                     std::vector<std::uint8_t>* activeOut) {
+    std::size_t n = cur.size();
+    if (needBrackets_) brackets_.build(cur.symbols());
+    ModuleString out;
+    out.reserve(n, cur.paramCount());
+    if (parametric_ || cur.hasParameters()) out.rawParamStart().assign(1, 0);
+    if (activeOut) activeOut->clear();
+    std::vector<double> slots(static_cast<std::size_t>(maxSlots_)), weights, args;
+    bool any = false;
+    for (std::size_t i = 0; i < n; ++i) {
+        std::int32_t k = kIdentity;
+        try {
+            if (!activeIn || (*activeIn)[i])
+                k = choose(cur, i, i, stepNumber, table, slots.data(), weights);
+            if (k == kIdentity) {
+                out.push(cur.symbol(i), cur.params(i));
+                if (activeOut) activeOut->push_back(0);
+                continue;
+            }
+            any = true;
+            const Production& p = productions_[static_cast<std::size_t>(k)];
+            matches(p, cur, i, slots.data());
+            Draws draws{this, static_cast<std::uint64_t>(stepNumber), i, 1ull << 32};
+            if (!p.postBlock.empty()) runStatements(p.postBlock, slots.data(), draws);
+            for (const auto& m : p.successor) {
+                args.clear();
+                for (const auto& a : m.args) args.push_back(evaluate(a, slots.data(), draws));
+                out.push(m.symbol, args);
+                if (activeOut) activeOut->push_back(1);
+            }
+            i += p.predecessor.size() - 1;
+        } catch (const Error& err) {
+            rethrowAt(err, cur, i, stepNumber);
+        }
+        if ((i & 0xFFF) == 0) checkLimit(stepNumber, out.size(), out.paramCount(), 0, cur, limit);
+    }
+    checkLimit(stepNumber, out.size(), out.paramCount(), 0, cur, limit);
+    next = std::move(out);
+    return any;
 }
 
 }  // namespace graftal

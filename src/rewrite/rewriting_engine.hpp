@@ -5,7 +5,9 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
+#include <string_view>
 #include <vector>
 
 #include "bracket_index.hpp"
@@ -28,6 +30,18 @@ class RewritingEngine {
     bool step(const ModuleString& cur, ModuleString& next, int stepNumber, int table,
               std::size_t memoryLimit, const std::vector<std::uint8_t>* activeIn = nullptr,
               std::vector<std::uint8_t>* activeOut = nullptr);
+
+    // The L-system's state (LSystem::stateNames) that blocks and expressions read and
+    // write, and where printf writes. Without it, expressions that need them fail.
+    void setState(double* state, const std::function<void(std::string_view)>* print,
+                  OutputFiles* files = nullptr) {
+        state_ = state;
+        print_ = print;
+        files_ = files;
+    }
+    // Runs a block of statements with `slots` bound (nullptr for Start: and the like).
+    void runBlock(const Block& block, const double* slots, int stepNumber,
+                  std::uint64_t position) const;
 
     bool parametric() const { return parametric_; }
     bool usesContext() const { return needBrackets_ || multiPred_; }
@@ -53,6 +67,10 @@ class RewritingEngine {
                   std::size_t limit);
     bool stepContext(const ModuleString& cur, ModuleString& next, int stepNumber, int table,
                      std::size_t limit);
+    bool stepSequential(const ModuleString& cur, ModuleString& next, int stepNumber, int table,
+                        std::size_t limit, const std::vector<std::uint8_t>* activeIn,
+                        std::vector<std::uint8_t>* activeOut);
+    void runStatements(const Block& block, const double* slots, Draws& draws) const;
     bool stepGeneric(const ModuleString& cur, ModuleString& next, int stepNumber, int table,
                      std::size_t limit, const std::vector<std::uint8_t>* activeIn,
                      std::vector<std::uint8_t>* activeOut);
@@ -65,6 +83,8 @@ class RewritingEngine {
     bool matchRight(const Production& p, const ModuleString& s, std::size_t from, double* slots,
                     int& slot) const;
     double evaluate(const Expression& e, const double* slots, Draws& draws) const;
+    // Blocks (which run on one thread) always print; expressions only in sequential steps.
+    double evaluate(const Expression& e, const double* slots, Draws& draws, bool mayPrint) const;
     // Re-raises an expression's error under the production being applied (`p`; when null,
     // the error already names it), naming the module and the derivation step.
     [[noreturn]] void rethrowAt(const class Error& err, const ModuleString& s, std::size_t i,
@@ -88,6 +108,12 @@ class RewritingEngine {
     bool parametric_ = false;
     bool needBrackets_ = false;
     bool genericOnly_ = false;
+    // Productions with blocks or printf: modules are rewritten one after the other, in
+    // string order, on one thread (what a block writes is seen by the modules after it).
+    bool sequential_ = false;
+    double* state_ = nullptr;
+    const std::function<void(std::string_view)>* print_ = nullptr;
+    OutputFiles* files_ = nullptr;
     int maxSlots_ = 1;
     std::size_t tableCount_ = 1;
 

@@ -16,6 +16,15 @@ std::string streamingObstacle(const LSystem& ls) {
     if (!ls.decomposition.empty()) return "it has a decomposition section";
     if (!ls.homomorphism.empty()) return "it has a homomorphism section";
     if (ls.usesCut()) return "it uses the cut symbol %";
+    if (ls.hasSideEffects() || ls.hasGlobalBlocks() || ls.stateNames.size() > 2 ||
+        !ls.axiomArguments.empty())
+        return "it has statement blocks or variables (they run in string order)";
+    for (const auto& p : ls.productions) {
+        bool state = p.condition && p.condition->usesState();
+        for (const auto& m : p.successor)
+            for (const auto& a : m.args) state |= a.usesState();
+        if (state) return "it reads Q, Z or variables";
+    }
     if (!ls.environment.empty()) return "it talks to an environment";
     for (Symbol s : ls.axiom.symbols())
         if (s >= kQueryE && s <= kQueryU) return "it has query modules";
