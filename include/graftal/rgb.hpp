@@ -2,6 +2,7 @@
 #pragma once
 
 #include <ostream>
+#include <string>
 
 namespace graftal {
 
@@ -11,6 +12,9 @@ struct Rgb {
     friend bool operator==(const Rgb&, const Rgb&) = default;
 };
 
+// "#rrggbb", as SVG and cpfg's colour files write it; components are clamped to [0, 1]
+// and a NaN counts as 0.
+std::string hexColor(const Rgb& c);
 std::ostream& operator<<(std::ostream& os, const Rgb& c);  // #rrggbb
 
 }  // namespace graftal

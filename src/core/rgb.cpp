@@ -6,17 +6,20 @@
 
 namespace graftal {
 
-std::ostream& operator<<(std::ostream& os, const Rgb& c) {
-    auto byte = [](float v) {
-        return static_cast<int>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255));
-    };
-    const char* digits = "0123456789abcdef";
+std::string hexColor(const Rgb& c) {
+    static const char kDigits[] = "0123456789abcdef";
     std::string s = "#";
-    for (int b : {byte(c.r), byte(c.g), byte(c.b)}) {
-        s += digits[b >> 4];
-        s += digits[b & 15];
+    for (float v : {c.r, c.g, c.b}) {
+        const float clamped = std::isfinite(v) ? std::fmin(std::fmax(v, 0.0f), 1.0f) : 0.0f;
+        const int byte = static_cast<int>(std::lround(clamped * 255.0f));
+        s += kDigits[byte >> 4];
+        s += kDigits[byte & 15];
     }
-    return os << s;
+    return s;
+}
+
+std::ostream& operator<<(std::ostream& os, const Rgb& c) {
+    return os << hexColor(c);
 }
 
 }  // namespace graftal

@@ -40,18 +40,6 @@ std::string number(double v) {
     return s.str();
 }
 
-std::string hex(const Rgb& c) {
-    static const char kDigits[] = "0123456789abcdef";
-    std::string s = "#";
-    for (float v : {c.r, c.g, c.b}) {
-        const float clamped = std::isfinite(v) ? std::fmin(std::fmax(v, 0.0f), 1.0f) : 0.0f;
-        const int byte = static_cast<int>(std::lround(clamped * 255.0f));
-        s += kDigits[byte >> 4];
-        s += kDigits[byte & 15];
-    }
-    return s;
-}
-
 std::string escaped(const std::string& text) {
     std::string s;
     for (char ch : text) {
@@ -207,7 +195,7 @@ void writeDerivationDiagramSvg(const DerivationDiagram& d, std::ostream& out) {
         << "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" << w
         << "\" height=\"" << h << "\" viewBox=\"0 0 " << w << " " << h << "\">\n"
         << "<rect x=\"0\" y=\"0\" width=\"" << w << "\" height=\"" << h << "\" fill=\""
-        << hex(d.background) << "\"/>\n"
+        << hexColor(d.background) << "\"/>\n"
         << "<g font-family=\"" << kFont << ", Arial, Helvetica, sans-serif\">\n";
     const double outline = std::max(1.0, d.labelSize / 14);
     for (const DiagramRow& row : d.rows) {
@@ -215,23 +203,23 @@ void writeDerivationDiagramSvg(const DerivationDiagram& d, std::ostream& out) {
             out << "<text x=\"" << number(row.labelX) << "\" y=\""
                 << number(row.labelY + 0.4 * d.parameterSize) << "\" font-size=\""
                 << number(d.parameterSize * 1.2) << "\" text-anchor=\"end\" fill=\""
-                << hex(kStepInk) << "\">" << row.step << "</text>\n";
+                << hexColor(kStepInk) << "\">" << row.step << "</text>\n";
         for (const DiagramCell& c : row.cells) {
             const double cx = c.x + c.width / 2;
             out << "<rect x=\"" << number(c.x) << "\" y=\"" << number(c.y) << "\" width=\""
                 << number(c.width) << "\" height=\"" << number(c.height) << "\" rx=\""
                 << number(std::min(kCornerRadius * c.height, c.width / 2)) << "\" fill=\""
-                << hex(c.fill) << "\" stroke=\"" << hex(kInk) << "\" stroke-width=\""
+                << hexColor(c.fill) << "\" stroke=\"" << hexColor(kInk) << "\" stroke-width=\""
                 << number(outline) << "\"" << (c.ellipsis ? " stroke-dasharray=\"4 3\"" : "")
                 << "/>\n"
                 << "<text x=\"" << number(cx) << "\" y=\"" << number(labelBaseline(c, d.labelSize))
                 << "\" font-size=\"" << number(d.labelSize)
-                << "\" font-weight=\"bold\" text-anchor=\"middle\" fill=\"" << hex(kInk) << "\">"
+                << "\" font-weight=\"bold\" text-anchor=\"middle\" fill=\"" << hexColor(kInk) << "\">"
                 << escaped(c.label) << "</text>\n";
             if (!c.parameters.empty())
                 out << "<text x=\"" << number(cx) << "\" y=\"" << number(parameterBaseline(c))
                     << "\" font-size=\"" << number(d.parameterSize)
-                    << "\" text-anchor=\"middle\" fill=\"" << hex(kInk) << "\">"
+                    << "\" text-anchor=\"middle\" fill=\"" << hexColor(kInk) << "\">"
                     << escaped(c.parameters) << "</text>\n";
         }
     }
