@@ -197,6 +197,9 @@ def load(path):
         m = re.match(r"(Lsystem|endlsystem)\b", line, re.I)
         if m:
             continue
+        # How a curve is smoothed, dotted or played changes neither string nor turtle path.
+        if re.match(r"(spline|kolam dots|music [a-z]+)\s*:", line, re.I):
+            continue
         m = re.match(r"(derivation length|angle factor|angle increment|scale factor|axiom"
                      r"|ignore|consider)\s*:(.*)$", line, re.I)
         if m:

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "graftal/diagnostics.hpp"
+#include "graftal/music_scale.hpp"
 #include "graftal/scene.hpp"
 
 namespace graftal {
@@ -21,6 +22,23 @@ struct SurfaceDeclaration {
     std::string file;  // a .s file, relative to the L-system file, or a built-in name
     double scale = 1;
     SourceLocation location;
+};
+
+// How `graftal music` reads the curve as a score (LSFP ch. 6.3); an empty value takes the
+// command's default (see docs/language.md).
+struct MusicSettings {
+    std::optional<ScaleSteps> scale;  // `music scale:` major, minor, ... or semitone offsets
+    std::optional<int> root;          // `music root:` MIDI note of the first note (C4 = 60)
+    std::optional<double> tempo;      // `music tempo:` beats per minute
+    std::optional<int> instrument;    // `music instrument:` General MIDI program, 1..128
+    std::optional<bool> pitchFromX;   // `music axis: x`: pitch from x, time from vertical moves
+    std::optional<double> unit;       // `music unit:` beats per step length
+};
+
+// Which turtle positions a B-spline runs through (when splineSubdivisions > 0).
+enum class SplineMode {
+    Segments,  // the drawn segments' ends (F): Fig 2.11b; f moves leave gaps
+    Path,      // every position, f moves included, and the whole path is drawn (kolams)
 };
 
 struct ViewSettings {
@@ -52,6 +70,9 @@ struct ViewSettings {
     std::string colorMap;        // a cpfg .map file, relative to the L-system file
     int splineSubdivisions = 0;  // > 0: draw turtle paths as B-splines (LSFP Fig 2.10)
     std::vector<SurfaceDeclaration> surfaces;
+    SplineMode splineMode = SplineMode::Segments;  // `spline: path` draws kolams (LSFP 6.2)
+    bool kolamDots = false;  // `kolam dots: on`: the grid of dots the kolam's loops surround
+    MusicSettings music;
 };
 
 std::ostream& operator<<(std::ostream& os, const ViewSettings& v);

@@ -41,6 +41,50 @@ std::string applySurface(ViewSettings& view, const std::string& text, const Sour
     return "";
 }
 
+// spline: path|segments|off, kolam dots: on|off, music scale/root/axis.
+std::string applyWordSetting(ViewSettings& view, const std::string& kw, const std::string& text) {
+    std::string word = lowerCase(text);
+    if (kw == "spline") {
+        if (word == "path") {
+            view.splineMode = SplineMode::Path;
+            if (view.splineSubdivisions == 0) view.splineSubdivisions = 8;
+        } else if (word == "segments") {
+            view.splineMode = SplineMode::Segments;
+            if (view.splineSubdivisions == 0) view.splineSubdivisions = 8;
+        } else if (word == "off" || word == "none") {
+            view.splineSubdivisions = 0;
+        } else {
+            return "spline is 'path' (every turtle position, f included), 'segments' (the "
+                   "drawn segments) or 'off', not '" +
+                   text + "'";
+        }
+    } else if (kw == "kolam dots") {
+        if (word == "on" || word == "yes" || word == "1")
+            view.kolamDots = true;
+        else if (word == "off" || word == "no" || word == "0")
+            view.kolamDots = false;
+        else
+            return "kolam dots is 'on' or 'off', not '" + text + "'";
+    } else if (kw == "music scale") {
+        ScaleSteps steps;
+        if (std::string e = parseScale(text, steps); !e.empty()) return e;
+        view.music.scale = std::move(steps);
+    } else if (kw == "music root") {
+        int root = 0;
+        if (std::string e = parseNoteName(text, root); !e.empty()) return e;
+        view.music.root = root;
+    } else {
+        if (word == "y")
+            view.music.pitchFromX = false;
+        else if (word == "x")
+            view.music.pitchFromX = true;
+        else
+            return "music axis is 'y' (pitch from y, the book's reading) or 'x', not '" + text +
+                   "'";
+    }
+    return "";
+}
+
 }  // namespace
 
 const std::vector<std::string>& viewSettingNames() {
@@ -74,6 +118,14 @@ const std::vector<std::string>& viewSettingNames() {
         "twist",
         "torque direction",
         "torque elasticity",
+        "spline",
+        "kolam dots",
+        "music scale",
+        "music root",
+        "music tempo",
+        "music instrument",
+        "music axis",
+        "music unit",
     };
     return names;
 }
@@ -104,6 +156,11 @@ std::string applyViewSetting(ViewSettings& view, const ViewSetting& setting) {
                 Vec3{v.x / n, v.y / n, v.z / n};
         }
         return "";
+    }
+    if (kw == "spline" || kw == "kolam dots" || kw == "music scale" || kw == "music root" ||
+        kw == "music axis") {
+        if (!text) return "'" + kw + ":' expects a word, not a number";
+        return applyWordSetting(view, kw, *text);
     }
     if (kw == "projection" || kw == "line style" || kw == "background" || kw == "color map" ||
         kw == "colour map" || kw == "surface") {
@@ -183,6 +240,16 @@ std::string applyViewSetting(ViewSettings& view, const ViewSetting& setting) {
         view.twistDegrees = d;
     } else if (kw == "torque elasticity") {
         view.torqueElasticity = d;
+    } else if (kw == "music tempo") {
+        if (d <= 0 || d > 1000) return "music tempo is beats per minute, above 0 and at most 1000";
+        view.music.tempo = d;
+    } else if (kw == "music instrument") {
+        if (d < 1 || d > 128 || d != std::floor(d))
+            return "music instrument is a General MIDI program, a whole number from 1 to 128";
+        view.music.instrument = static_cast<int>(d);
+    } else if (kw == "music unit") {
+        if (d <= 0 || d > 64) return "music unit is the beats of one step, above 0 and at most 64";
+        view.music.unit = d;
     }
     return "";
 }
