@@ -59,7 +59,10 @@ struct RenderRequest : DeriveRequest {
     std::optional<double> fieldOfView;
     int samplesPerPixel = 4;
     int tubeSides = 8;
-    std::optional<int> spline;       // B-spline subdivisions (0: off); empty: the file's
+    std::optional<int> spline;  // B-spline subdivisions (0: off); empty: the file's
+    // The spline through every turtle position, f moves included (kolams); empty: the file's.
+    std::optional<bool> splinePath;
+    bool kolamDots = false;  // draw the kolam's dots (also when the file says `kolam dots: on`)
     bool derivationDiagram = false;  // draw the derivation steps, not the turtle's picture
 };
 
@@ -95,6 +98,11 @@ DerivationOptions derivationOptions(const Model& model, const DeriveRequest& req
 // The request's output format; throws Error for an unknown extension or options that do not
 // fit it (a view or a derivation diagram for a 3D file), before anything is derived.
 FileFormat checkRenderRequest(const RenderRequest& request);
+
+// The scene render() draws for the derived (and homomorphism-applied) string `shown`: the
+// turtle's scene with the request's or the file's B-spline smoothing (through the drawn
+// segments, or through the whole path with f moves when `spline: path`) and kolam dots.
+Scene sceneForRender(const Model& model, ModuleString shown, const RenderRequest& request);
 
 // Derives and renders to request.output as `graftal render` does. Throws Error (Cancelled
 // when request.cancel is raised); no partial output file is left.

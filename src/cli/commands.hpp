@@ -38,6 +38,8 @@ struct RenderCommandOptions {
     int samplesPerPixel = 4;
     int tubeSides = 8;
     std::optional<int> spline;  // --spline N: B-spline subdivisions (0: off)
+    bool splinePath = false;    // --spline-path: every turtle position, f included
+    bool kolamDots = false;     // --dots: the kolam's dots
     bool sizeGiven = false, backgroundGiven = false;
     bool derivation = false;  // --derivation: draw the derivation steps, not the turtle's picture
 };

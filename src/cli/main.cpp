@@ -171,6 +171,10 @@ int main(int argc, char** argv) {
         ->add_option("--spline", out.spline,
                      "draw turtle paths as B-splines with N points per segment (0: straight)")
         ->check(CLI::Range(0, 64));
+    render->add_flag("--spline-path", out.splinePath,
+                     "B-spline through every turtle position, f moves included, drawn whole "
+                     "(kolams; --spline 8 unless given)");
+    render->add_flag("--dots", out.kolamDots, "draw the dots a kolam's loops surround (pulli)");
 
     if (std::string problem = usageProblem(app, argc, argv); !problem.empty()) {
         std::cerr << "graftal: error: " << problem << "\n";

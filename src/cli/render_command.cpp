@@ -26,6 +26,8 @@ int runRender(const InputOptions& in, const RenderCommandOptions& out) {
     request.samplesPerPixel = out.samplesPerPixel;
     request.tubeSides = out.tubeSides;
     request.spline = out.spline;
+    if (out.splinePath) request.splinePath = true;
+    request.kolamDots = out.kolamDots;
     request.derivationDiagram = out.derivation;
     checkRenderRequest(request);  // option errors before the file is read
 

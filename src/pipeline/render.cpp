@@ -8,6 +8,7 @@
 #include "graftal/color_map.hpp"
 #include "graftal/derivation_diagram.hpp"
 #include "graftal/file_format.hpp"
+#include "graftal/kolam.hpp"
 #include "graftal/mesh.hpp"
 #include "graftal/pipeline.hpp"
 #include "graftal/render3d.hpp"
@@ -138,6 +139,24 @@ FileFormat checkRenderRequest(const RenderRequest& request) {
     return *format;
 }
 
+Scene sceneForRender(const Model& model, ModuleString shown, const RenderRequest& request) {
+    const bool path = request.splinePath.value_or(model.view.splineMode == SplineMode::Path);
+    int subdivisions = request.spline.value_or(model.view.splineSubdivisions);
+    if (request.splinePath.value_or(false) && !request.spline && subdivisions == 0)
+        subdivisions = 8;
+    // The kolams' B-spline runs through every position of the turtle, f moves included
+    // (LSFP 6.2.3): the moves become drawn segments, so the whole path is one curve.
+    if (path && subdivisions > 0)
+        for (Symbol& s : shown.rawSymbols())
+            if (s == 'f') s = 'F';
+    Scene scene = interpret(model, shown);
+    shown = ModuleString{};
+    if (request.kolamDots || model.view.kolamDots)
+        addKolamDots(scene, model.view.stepLength, 0.08 * model.view.stepLength);
+    if (subdivisions > 0) scene = smoothSegments(scene, subdivisions);
+    return scene;
+}
+
 RenderResult render(const Model& model, const RenderRequest& request) {
     const std::string output = request.output.string();
     const std::optional<FileFormat> format = checkRenderRequest(request);
@@ -169,10 +188,9 @@ RenderResult render(const Model& model, const RenderRequest& request) {
     const DerivationOptions derivation = derivationOptions(model, request);
     ModuleString modules = derive(model, steps, derivation);
     request.cancel.check();
-    Scene scene = interpret(model, applyHomomorphism(model.lsystem, modules, derivation));
+    Scene scene =
+        sceneForRender(model, applyHomomorphism(model.lsystem, modules, derivation), request);
     modules = ModuleString{};
-    if (int n = request.spline.value_or(model.view.splineSubdivisions); n > 0)
-        scene = smoothSegments(scene, n);
     const std::filesystem::path folder = sourceFolder(model, request);
     if (!model.view.colorMap.empty()) scene.palette = loadColorMap(folder / model.view.colorMap);
 
