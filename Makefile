@@ -7,6 +7,9 @@ BUILD_DIR ?= build
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 DEBIAN_PACKAGES := cmake g++ make pkg-config ccache libgtest-dev libcli11-dev libcairo2-dev \
                    nlohmann-json3-dev poppler-utils libembree-dev libtinygltf-dev
+# Fractal music: MIDI files (libsmf), audio (FluidSynth and a General MIDI SoundFont),
+# engraved scores (LilyPond).
+MUSIC_PACKAGES := libsmf-dev libfluidsynth-dev timgm6mb-soundfont lilypond
 # Node.js and npm run the glTF validator in the tests; a machine that already has them
 # (from any source) keeps its own, since Debian's npm conflicts with other Node builds.
 NODE_PACKAGES := $(shell command -v node >/dev/null 2>&1 || echo nodejs) \
@@ -40,7 +43,7 @@ fi
 endef
 
 deps:
-	$(call install-missing,$(DEBIAN_PACKAGES) $(NODE_PACKAGES))
+	$(call install-missing,$(DEBIAN_PACKAGES) $(NODE_PACKAGES) $(MUSIC_PACKAGES))
 
 configure: deps
 	@cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release > /dev/null

@@ -6,6 +6,7 @@
 #include "commands.hpp"
 #include "graftal/diagnostics.hpp"
 #include "graftal/file_format.hpp"
+#include "music_command.hpp"
 
 namespace {
 
@@ -176,6 +177,13 @@ int main(int argc, char** argv) {
                      "(kolams; --spline 8 unless given)");
     render->add_flag("--dots", out.kolamDots, "draw the dots a kolam's loops surround (pulli)");
 
+    graftal::cli::MusicCommandOptions musicOut;
+    auto* music = app.add_subcommand(
+        "music",
+        "play the curve: horizontal runs as notes (.mid .wav .ly .pdf .png .svg .musicxml)");
+    addInputOptions(*music, in, memoryLimit);
+    graftal::cli::addMusicOptions(*music, musicOut);
+
     if (std::string problem = usageProblem(app, argc, argv); !problem.empty()) {
         std::cerr << "graftal: error: " << problem << "\n";
         return 2;
@@ -192,6 +200,7 @@ int main(int argc, char** argv) {
         if (!memoryLimit.empty()) in.memoryLimit = graftal::cli::parseByteSize(memoryLimit);
         if (*derive) return graftal::cli::runDerive(in, homomorphism);
         if (*stats) return graftal::cli::runStats(in, !noGeometry, predict);
+        if (*music) return graftal::cli::runMusic(in, musicOut);
         if (!size.empty()) graftal::cli::parseImageSize(size, out.render.width, out.render.height);
         if (!background.empty()) out.render.background = graftal::cli::parseColor(background);
         out.backgroundGiven = !background.empty();

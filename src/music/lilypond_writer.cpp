@@ -1,0 +1,198 @@
+// LilyPond source of a score, and the engraved score made by running the lilypond program.
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "graftal/atomic_file.hpp"
+#include "graftal/music.hpp"
+#include "music/notation.hpp"
+
+extern char** environ;
+
+namespace graftal {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// LilyPond's Dutch names: c cis d ... with ' for each octave above the one below middle C.
+std::string lilyPitch(int midi) {
+    static const char* names[] = {"c",   "cis", "d",   "dis", "e",   "f",
+                                  "fis", "g",   "gis", "a",   "ais", "b"};
+    std::string s = names[midi % 12];
+    int marks = midi / 12 - 4;
+    s += std::string(static_cast<std::size_t>(std::abs(marks)), marks > 0 ? '\'' : ',');
+    return s;
+}
+
+std::string lilyDuration(int units) {
+    bool dotted = false;
+    int value = notation::noteValue(units, dotted);
+    return std::to_string(value) + (dotted ? "." : "");
+}
+
+std::string quoted(const std::string& s) {
+    std::string out = "\"";
+    for (char c : s) {
+        if (c == '"' || c == '\\') out += '\\';
+        out += c;
+    }
+    return out + "\"";
+}
+
+std::string formatTempo(double bpm) {
+    std::ostringstream os;
+    os << std::lround(bpm);
+    return os.str();
+}
+
+// The lilypond program on the PATH.
+fs::path findOnPath(const std::string& program) {
+    const char* path = std::getenv("PATH");
+    std::string dirs = path ? path : "/usr/bin:/bin";
+    std::size_t start = 0;
+    while (start <= dirs.size()) {
+        std::size_t end = dirs.find(':', start);
+        if (end == std::string::npos) end = dirs.size();
+        fs::path candidate = fs::path(dirs.substr(start, end - start)) / program;
+        if (end > start && ::access(candidate.c_str(), X_OK) == 0) return candidate;
+        start = end + 1;
+    }
+    return {};
+}
+
+// A fresh private folder for lilypond's files, removed when done.
+struct TemporaryFolder {
+    fs::path path;
+    TemporaryFolder() {
+        static std::atomic<unsigned> counter{0};
+        path = fs::temp_directory_path() /
+               ("graftal-score-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+        fs::create_directories(path);
+    }
+    ~TemporaryFolder() {
+        std::error_code ec;
+        fs::remove_all(path, ec);
+    }
+};
+
+// Runs `argv` with its output in `log`; returns the exit status (-1 when it cannot start).
+int run(const std::vector<std::string>& args, const fs::path& log) {
+    std::vector<char*> argv;
+    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_adddup2(&actions, 1, 2);
+    pid_t pid = 0;
+    int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    if (rc != 0) return -1;
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0)
+        if (errno != EINTR) return -1;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string tail(const fs::path& log) {
+    std::ifstream in(log);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (text.size() > 600) text = "..." + text.substr(text.size() - 600);
+    while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+    return text;
+}
+
+}  // namespace
+
+std::string lilyPondSource(const Score& score, bool onePage) {
+    double mean = 0;
+    for (const Note& n : score.notes) mean += n.pitch;
+    if (!score.notes.empty()) mean /= static_cast<double>(score.notes.size());
+
+    std::ostringstream os;
+    os << "% Made by graftal: a curve read as a score (LSFP ch. 6.3).\n";
+    os << "\\version \"2.24.0\"\n";
+    os << "\\header {\n";
+    if (!score.title.empty()) os << "  title = " << quoted(score.title) << "\n";
+    os << "  tagline = ##f\n}\n";
+    if (onePage) os << "\\paper { page-breaking = #ly:one-page-breaking }\n";
+    os << "\\score {\n  \\new Staff {\n";
+    os << "    \\clef " << (mean < 57 ? "bass" : "treble") << "\n";
+    os << "    \\time 4/4\n";
+    os << "    \\tempo 4 = " << formatTempo(score.tempo) << "\n";
+    for (const notation::Bar& bar : notation::bars(score)) {
+        os << "   ";
+        for (const notation::Piece& p : bar) {
+            os << ' ' << (p.rest ? std::string("r") : lilyPitch(p.pitch)) << lilyDuration(p.units);
+            if (p.tieToNext) os << " ~";
+        }
+        os << " |\n";
+    }
+    os << "    \\bar \"|.\"\n  }\n  \\layout { }\n}\n";
+    return os.str();
+}
+
+void writeLilyPond(const Score& score, const fs::path& path) {
+    std::string text = lilyPondSource(score);
+    writeStreamAtomically(
+        path, [&](std::ostream& out) { out << text; }, "LilyPond score");
+}
+
+fs::path findLilyPond() {
+    if (const char* env = std::getenv("GRAFTAL_LILYPOND"); env && *env) return env;
+    return findOnPath("lilypond");
+}
+
+void engraveScore(const Score& score, const fs::path& path) {
+    std::string ext = path.extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (ext != ".pdf" && ext != ".png" && ext != ".svg")
+        throw fileError(path,
+                        "cannot engrave a score as '" + ext + "': expected .pdf, .png or .svg");
+    const std::string what = "score";
+    fs::path lilypond = findLilyPond();
+    if (lilypond.empty())
+        throw fileError(path,
+                        "cannot engrave the score: the lilypond program is not installed "
+                        "(Debian: 'apt-get install lilypond', or 'make deps'); write a .ly "
+                        "file instead and engrave it later with 'lilypond score.ly'");
+    TemporaryFolder tmp;
+    const fs::path source = tmp.path / "score.ly";
+    {
+        std::ofstream out(source);
+        out << lilyPondSource(score, ext != ".pdf");
+        if (!out)
+            throw fileError(path, "cannot engrave the score: cannot write its LilyPond source");
+    }
+    std::vector<std::string> args = {lilypond.string(), "-dno-point-and-click", "-s"};
+    if (ext == ".pdf") args.push_back("--pdf");
+    if (ext == ".png") args.insert(args.end(), {"--png", "-dresolution=110"});
+    if (ext == ".svg") args.push_back("--svg");
+    args.insert(args.end(), {"-o", (tmp.path / "score").string(), source.string()});
+    const fs::path log = tmp.path / "lilypond.log";
+    int status = run(args, log);
+    if (status != 0) {
+        std::string detail = tail(log);
+        throw fileError(path,
+                        "cannot engrave the score: lilypond " +
+                            (status < 0 ? std::string("could not be run")
+                                        : "failed (exit status " + std::to_string(status) + ")") +
+                            (detail.empty() ? "" : ":\n" + detail));
+    }
+    fs::path made = tmp.path / ("score" + ext);
+    if (!fs::exists(made)) made = tmp.path / ("score-page1" + ext);
+    if (!fs::exists(made))
+        throw fileError(path, "cannot engrave the score: lilypond wrote no " + ext + " file");
+    writeFileAtomically(
+        path, [&](const fs::path& temporary) { fs::copy_file(made, temporary); }, what);
+}
+
+}  // namespace graftal
