@@ -106,7 +106,9 @@ Score scoreFromScene(const Scene& scene, double stepLength, const MusicOptions& 
             continue;
         }
         double height = heightOf(s.a);
-        double beats = dt / stepLength * options.unit;
+        // The turtle's sines and cosines leave lengths like 0.9999999999999999 steps; beats
+        // are kept to a billionth so that a score of whole steps adds up exactly.
+        double beats = std::round(dt / stepLength * options.unit * 1e9) / 1e9;
         if (connected && std::abs(height - runHeight) <= eps) {
             score.notes.back().duration += beats;
         } else {
