@@ -90,6 +90,21 @@ for file in "${files[@]}"; do
             "$(caption "$file" "$name")" "$name" >> "$index.tmp"
     fi
 done
+# Fractal music (LSFP 6.3): Fig 6.9's score engraved by LilyPond and its audio (16 kHz mono
+# keeps the WAV small), and the MIDI files of every music example.
+for file in "$examples"/fig6.9-*music*.l "$examples"/sec6.3-*.l; do
+    name=$(basename "$file" .l)
+    outs=("$outdir/$name.mid")
+    case $name in fig6.9-*) outs+=("$outdir/$name-score.png" "$outdir/$name.wav") ;; esac
+    for out in "${outs[@]}"; do
+        if msg=$("$exe" music "$file" -o "$out" --sample-rate 16000 2>&1) && [ -s "$out" ]; then
+            printf 'ok    %-40s -> %s\n' "$name.l" "$out"
+        else
+            printf 'FAIL  %-40s %s\n' "$name.l" "$(printf '%s' "$msg" | head -n 3 | tr '\n' ' ')"
+            failed=$((failed + 1))
+        fi
+    done
+done
 mv "$index.tmp" "$index"
 
 echo "$rendered rendered, $failed failed; index: $index"
