@@ -122,7 +122,8 @@ Score scoreFromScene(const Scene& scene, double stepLength, const MusicOptions& 
                 throw musicError(
                     "note " + std::to_string(score.notes.size() + 1) + " at " +
                     formatPoint(s.a.x, s.a.y) + " is " + std::to_string(degree) +
-                    " scale steps from the first note: MIDI pitch " + std::to_string(pitch) +
+                    (std::abs(degree) == 1 ? " scale step" : " scale steps") +
+                    " from the first note: MIDI pitch " + std::to_string(pitch) +
                     ", outside MIDI's range 0 to 127 (expected a smaller curve, a lower "
                     "derivation length, another root or a scale with more notes per octave)");
             score.notes.push_back(Note{static_cast<int>(pitch), clock, beats, options.velocity});
