@@ -81,8 +81,14 @@ for file in "${files[@]}"; do
         printf 'ok    %-40s -> %s (%s s)\n' "$name.l" "$out" \
             "$(awk -v a="$start" -v b="$end" 'BEGIN { printf "%.2f", b - a }')"
         rendered=$((rendered + 1))
-        printf '| [<img src="%s.png" width="160" alt="%s">](%s.png) | %s | `examples/%s.l` |\n' \
-            "$name" "$name" "$name" "$(caption "$file" "$name")" "$name" >> "$index.tmp"
+        # The music examples' scores, audio and MIDI files are made after this loop.
+        case $name in
+            fig6.9-*music*) extra=" ([score]($name-score.png), [audio]($name.wav), [MIDI]($name.mid))" ;;
+            sec6.3-*) extra=" ([MIDI]($name.mid))" ;;
+            *) extra="" ;;
+        esac
+        printf '| [<img src="%s.png" width="160" alt="%s">](%s.png) | %s%s | `examples/%s.l` |\n' \
+            "$name" "$name" "$name" "$(caption "$file" "$name")" "$extra" "$name" >> "$index.tmp"
     else
         printf 'FAIL  %-40s %s\n' "$name.l" "$(printf '%s' "$msg" | head -n 3 | tr '\n' ' ')"
         failed=$((failed + 1))
