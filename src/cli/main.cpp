@@ -6,6 +6,7 @@
 #include "commands.hpp"
 #include "graftal/diagnostics.hpp"
 #include "graftal/file_format.hpp"
+#include "studio_command.hpp"
 
 namespace {
 
@@ -172,6 +173,9 @@ int main(int argc, char** argv) {
                      "draw turtle paths as B-splines with N points per segment (0: straight)")
         ->check(CLI::Range(0, 64));
 
+    graftal::cli::StudioCommandOptions studio;
+    graftal::cli::addStudioCommand(app, studio);
+
     if (std::string problem = usageProblem(app, argc, argv); !problem.empty()) {
         std::cerr << "graftal: error: " << problem << "\n";
         return 2;
@@ -186,6 +190,7 @@ int main(int argc, char** argv) {
 
     try {
         if (!memoryLimit.empty()) in.memoryLimit = graftal::cli::parseByteSize(memoryLimit);
+        if (*studio.command) return graftal::cli::runStudio(studio);
         if (*derive) return graftal::cli::runDerive(in, homomorphism);
         if (*stats) return graftal::cli::runStats(in, !noGeometry, predict);
         if (!size.empty()) graftal::cli::parseImageSize(size, out.render.width, out.render.height);

@@ -1,0 +1,89 @@
+// The server's endpoints (docs/studio.md). Geometry arrives as binary: the derive answer is
+// a 4-byte JSON length, the JSON, padding to 4 bytes, then the line buffer or a PNG.
+
+export const session = Math.random().toString(36).slice(2);
+
+async function failure(res) {
+  let body = {};
+  try { body = await res.json(); } catch { body = { error: res.statusText }; }
+  const error = new Error(body.error || res.statusText);
+  error.status = res.status;
+  error.diagnostics = body.diagnostics || [];
+  error.cancelled = !!body.cancelled;
+  return error;
+}
+
+async function getJson(url) {
+  const res = await fetch(url);
+  if (!res.ok) throw await failure(res);
+  return res.json();
+}
+
+async function post(url, body) {
+  const res = await fetch(url, {
+    method: 'POST',
+    headers: { 'Content-Type': 'application/json' },
+    body: JSON.stringify({ session, ...body }),
+  });
+  if (!res.ok) throw await failure(res);
+  return res;
+}
+
+export const listFiles = () => getJson('/api/files');
+export const readFile = (path) => getJson('/api/file?path=' + encodeURIComponent(path));
+export const info = () => getJson('/api/info');
+
+export async function writeFile(path, text) {
+  const res = await fetch('/api/file?path=' + encodeURIComponent(path), { method: 'PUT', body: text });
+  if (!res.ok) throw await failure(res);
+  return res.json();
+}
+
+export async function watch(path, since) {
+  return getJson('/api/watch?path=' + encodeURIComponent(path) + '&since=' + since);
+}
+
+export async function parse(model) {
+  return (await post('/api/parse', model)).json();
+}
+
+// {meta, lines} or {meta, png}.
+export async function derive(model) {
+  const buffer = await (await post('/api/derive', model)).arrayBuffer();
+  const length = new DataView(buffer).getUint32(0, true);
+  const meta = JSON.parse(new TextDecoder().decode(new Uint8Array(buffer, 4, length)));
+  let start = 4 + length;
+  start += (4 - (start % 4)) % 4;
+  if (meta.geometry === 'png') return { meta, png: new Blob([buffer.slice(start)], { type: 'image/png' }) };
+  return { meta, lines: decodeLines(buffer, start) };
+}
+
+// The line buffer: header (magic, segments, triangles, flags; bounds, line width, base
+// width), positions (6 floats a segment), widths, RGBA bytes, triangles (9 floats), RGBA.
+export function decodeLines(buffer, start) {
+  const head = new Uint32Array(buffer, start, 4);
+  if (head[0] !== 0x314c4647) throw new Error('not a graftal line buffer');
+  const n = head[1], t = head[2];
+  const floats = new Float32Array(buffer, start + 16, 8);
+  let at = start + 48;
+  const positions = new Float32Array(buffer, at, 6 * n); at += 24 * n;
+  const widths = new Float32Array(buffer, at, n); at += 4 * n;
+  const colors = new Uint8Array(buffer, at, 4 * n); at += 4 * n;
+  const triangles = new Float32Array(buffer, at, 9 * t); at += 36 * t;
+  const triangleColors = new Uint8Array(buffer, at, 4 * t);
+  return {
+    segments: n, triangleCount: t, is3D: (head[3] & 1) === 1,
+    min: [floats[0], floats[1], floats[2]], max: [floats[3], floats[4], floats[5]],
+    lineWidth: floats[6], baseWidth: floats[7],
+    positions, widths, colors, triangles, triangleColors,
+  };
+}
+
+export async function mesh(model) {
+  return (await post('/api/mesh', model)).arrayBuffer();
+}
+
+export async function exportFile(model, format) {
+  const res = await post('/api/export', { ...model, format });
+  return res.blob();
+}
