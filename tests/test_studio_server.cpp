@@ -219,8 +219,12 @@ TEST_F(StudioServerTest, DeriveSendsStatsAndSegmentsAsBinary) {
     std::memcpy(header, geometry.data(), sizeof header);
     EXPECT_EQ(header[0], 0x314C4647u);
     EXPECT_EQ(header[1], 15u);
-    // Header, 6 floats, a width and 4 colour bytes per segment.
-    EXPECT_EQ(geometry.size(), 48u + 15u * (24 + 4 + 4));
+    // Header, then 4 floats (a flat curve), a width and 4 colour bytes per segment.
+    EXPECT_EQ(geometry.size(), 48u + 15u * (16 + 4 + 4));
+    float firstSegment[4];
+    std::memcpy(firstSegment, geometry.data() + 48, sizeof firstSegment);
+    EXPECT_FLOAT_EQ(firstSegment[0], 0);
+    EXPECT_FLOAT_EQ(firstSegment[1], 0);
 
     body["defines"] = {{"STEPS", 1}};
     body.erase("steps");

@@ -112,11 +112,12 @@ void appendRaw(std::string& out, const T* data, std::size_t count) {
     out.append(reinterpret_cast<const char*>(data), count * sizeof(T));
 }
 
-void appendColor(std::vector<std::uint8_t>& out, const Rgb& c) {
+// R, G, B, A bytes in memory order (a little-endian uint32).
+std::uint32_t rgbaBytes(const Rgb& c) {
     auto byte = [](double v) {
-        return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255));
+        return static_cast<std::uint32_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255));
     };
-    out.insert(out.end(), {byte(c.r), byte(c.g), byte(c.b), 255});
+    return byte(c.r) | byte(c.g) << 8 | byte(c.b) << 16 | 0xFF000000u;
 }
 
 }  // namespace
@@ -248,21 +249,32 @@ StudioPicture derivePicture(const ModelInput& input, const StudioLimits& limits,
 }
 
 std::string encodeLines(const Scene& scene) {
+    // One pass over the segments, writing each array by index: this runs on every
+    // keystroke for up to millions of segments.
     const std::size_t n = scene.segments.size();
-    std::vector<float> positions;
-    std::vector<float> widths;
-    std::vector<std::uint8_t> colors;
-    positions.reserve(6 * n);
-    widths.reserve(n);
-    colors.reserve(4 * n);
-    for (const Segment& s : scene.segments) {
-        positions.insert(positions.end(), {float(s.a.x), float(s.a.y), float(s.a.z), float(s.b.x),
-                                           float(s.b.y), float(s.b.z)});
-        widths.push_back(s.width / (scene.baseWidth > 0 ? scene.baseWidth : 1.0f));
-        appendColor(colors, scene.colorOf(s.color));
+    const std::size_t stride = scene.is3D ? 6 : 4;  // x y (z) per end
+    std::vector<float> positions(stride * n), widths(n);
+    std::vector<std::uint32_t> colors(n);
+    std::vector<std::uint32_t> paletteRgba;
+    for (const Rgb& c : scene.palette.empty() ? std::vector<Rgb>{Rgb{0, 0, 0}} : scene.palette)
+        paletteRgba.push_back(rgbaBytes(c));
+    const float widthScale = 1.0f / (scene.baseWidth > 0 ? scene.baseWidth : 1.0f);
+    double ink = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const Segment& s = scene.segments[i];
+        float* p = positions.data() + stride * i;
+        if (stride == 6) {
+            p[0] = float(s.a.x), p[1] = float(s.a.y), p[2] = float(s.a.z);
+            p[3] = float(s.b.x), p[4] = float(s.b.y), p[5] = float(s.b.z);
+        } else {
+            p[0] = float(s.a.x), p[1] = float(s.a.y), p[2] = float(s.b.x), p[3] = float(s.b.y);
+        }
+        widths[i] = s.width * widthScale;
+        colors[i] = paletteRgba[s.color % paletteRgba.size()];
+        ink += inkLength(s, scene.baseWidth);
     }
     std::vector<float> triangles;
-    std::vector<std::uint8_t> triangleColors;
+    std::vector<std::uint32_t> triangleColors;
     auto addOutline = [&](const std::vector<Vec3>& outline, const Rgb& color) {
         const std::vector<std::uint32_t> index = triangulatePolygon(outline);
         for (std::size_t i = 0; i + 2 < index.size(); i += 3) {
@@ -270,7 +282,7 @@ std::string encodeLines(const Scene& scene) {
                 const Vec3& p = outline[index[i + k]];
                 triangles.insert(triangles.end(), {float(p.x), float(p.y), float(p.z)});
             }
-            appendColor(triangleColors, color);
+            triangleColors.push_back(rgbaBytes(color));
         }
     };
     for (std::size_t k = 0; k < scene.polygonCount(); ++k) {
@@ -284,20 +296,22 @@ std::string encodeLines(const Scene& scene) {
                    scene.colorOf(s.color));
 
     const Bounds b = scene.bounds();
+    const bool empty = b.empty();
     const std::uint32_t header[4] = {0x314C4647u, static_cast<std::uint32_t>(n),
-                                     static_cast<std::uint32_t>(triangleColors.size() / 4),
+                                     static_cast<std::uint32_t>(triangleColors.size()),
                                      scene.is3D ? 1u : 0u};
-    const float extent[8] = {float(b.empty() ? 0 : b.min.x),
-                             float(b.empty() ? 0 : b.min.y),
-                             float(b.empty() ? 0 : b.min.z),
-                             float(b.empty() ? 0 : b.max.x),
-                             float(b.empty() ? 0 : b.max.y),
-                             float(b.empty() ? 0 : b.max.z),
-                             float(defaultLineWidth(scene, RenderOptions{})),
+    const float lineWidth = float(defaultLineWidth(ink, n > 0, b, RenderOptions{}));
+    const float extent[8] = {float(empty ? 0 : b.min.x),
+                             float(empty ? 0 : b.min.y),
+                             float(empty ? 0 : b.min.z),
+                             float(empty ? 0 : b.max.x),
+                             float(empty ? 0 : b.max.y),
+                             float(empty ? 0 : b.max.z),
+                             lineWidth,
                              scene.baseWidth};
     std::string out;
-    out.reserve(48 + positions.size() * 4 + widths.size() * 4 + colors.size() +
-                triangles.size() * 4 + triangleColors.size());
+    out.reserve(48 + 4 * (positions.size() + widths.size() + colors.size() + triangles.size() +
+                          triangleColors.size()));
     appendRaw(out, header, 4);
     appendRaw(out, extent, 8);
     appendRaw(out, positions.data(), positions.size());

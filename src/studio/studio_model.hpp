@@ -71,8 +71,8 @@ StudioPicture derivePicture(const ModelInput& input, const StudioLimits& limits,
                             const CancellationToken& cancel, const std::filesystem::path& scratch);
 
 // The scene as the 2D view and the 3D line view read it (docs/studio.md lays it out):
-// a 48-byte header, then segments (6 floats each), widths, RGBA colours, and filled
-// triangles (9 floats each) with their colours.
+// a 48-byte header, then segments (x y x y floats each, x y z x y z in a 3D scene),
+// widths, RGBA colours, and filled triangles (9 floats each) with their colours.
 std::string encodeLines(const Scene& scene);
 
 // The picture's mesh (stems as tubes, polygons, surfaces) as glTF binary.

@@ -263,6 +263,7 @@ struct StudioServer::Impl {
         // a multiple of 4, then the line buffer (encodeLines) or a summarised PNG.
         server.Post("/api/derive",
                     guarded([this](const httplib::Request& req, httplib::Response& res) {
+                        const auto received = std::chrono::steady_clock::now();
                         const json body = parseBody(req);
                         const ModelInput input = modelInput(body);
                         const std::string session = sessionOf(body);
@@ -270,8 +271,18 @@ struct StudioServer::Impl {
                         auto picture = std::make_shared<StudioPicture>(
                             derivePicture(input, options.limits, token, scratch));
                         const bool summarised = !picture->summaryPng.empty();
+                        const auto encodeStart = std::chrono::steady_clock::now();
+                        const std::string geometry =
+                            summarised ? picture->summaryPng : encodeLines(picture->scene);
+                        json stats = picture->stats;
+                        stats["encodeMs"] = std::chrono::duration<double, std::milli>(
+                                                std::chrono::steady_clock::now() - encodeStart)
+                                                .count();
+                        stats["serverMs"] = std::chrono::duration<double, std::milli>(
+                                                std::chrono::steady_clock::now() - received)
+                                                .count();
                         json meta = {
-                            {"stats", picture->stats},
+                            {"stats", stats},
                             {"steps", picture->steps},
                             {"string", picture->stringHead},
                             {"notes", picture->notes},
@@ -284,7 +295,7 @@ struct StudioServer::Impl {
                         std::memcpy(out.data(), &length, 4);
                         out += metaText;
                         out.append((4 - out.size() % 4) % 4, ' ');
-                        out += summarised ? picture->summaryPng : encodeLines(picture->scene);
+                        out += geometry;
                         sessions.keep(session, inputKey(input), std::move(picture));
                         res.set_content(std::move(out), "application/octet-stream");
                     }));

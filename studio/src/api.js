@@ -59,20 +59,21 @@ export async function derive(model) {
 }
 
 // The line buffer: header (magic, segments, triangles, flags; bounds, line width, base
-// width), positions (6 floats a segment), widths, RGBA bytes, triangles (9 floats), RGBA.
+// width), positions (4 floats a segment, 6 in 3D), widths, RGBA bytes, triangles (9 floats), RGBA.
 export function decodeLines(buffer, start) {
   const head = new Uint32Array(buffer, start, 4);
   if (head[0] !== 0x314c4647) throw new Error('not a graftal line buffer');
   const n = head[1], t = head[2];
   const floats = new Float32Array(buffer, start + 16, 8);
   let at = start + 48;
-  const positions = new Float32Array(buffer, at, 6 * n); at += 24 * n;
+  const stride = head[3] & 1 ? 6 : 4;  // x y (z) of both ends
+  const positions = new Float32Array(buffer, at, stride * n); at += 4 * stride * n;
   const widths = new Float32Array(buffer, at, n); at += 4 * n;
   const colors = new Uint8Array(buffer, at, 4 * n); at += 4 * n;
   const triangles = new Float32Array(buffer, at, 9 * t); at += 36 * t;
   const triangleColors = new Uint8Array(buffer, at, 4 * t);
   return {
-    segments: n, triangleCount: t, is3D: (head[3] & 1) === 1,
+    segments: n, triangleCount: t, is3D: (head[3] & 1) === 1, stride,
     min: [floats[0], floats[1], floats[2]], max: [floats[3], floats[4], floats[5]],
     lineWidth: floats[6], baseWidth: floats[7],
     positions, widths, colors, triangles, triangleColors,

@@ -94,7 +94,7 @@ function refresh() {
     const done = performance.now();
     studio.timings.push({
       seq, ms: done - started, fetchMs: arrived - started, drawMs: done - arrived,
-      serverMs: result.meta.stats.deriveMs + (result.meta.stats.drawMs ?? 0),
+      serverMs: result.meta.stats.serverMs, deriveMs: result.meta.stats.deriveMs, turtleMs: result.meta.stats.drawMs,
       segments: result.meta.stats.segments,
     });
     $('views').classList.remove('stale');

@@ -96,6 +96,7 @@ export class View2D {
     // model size when zoomed.
     const perWidth = (l.lineWidth / View2D.fitScale(l, 800, 800)) * s;
     const n = l.segments, p = l.positions, widths = l.widths;
+    const stride = l.stride, end = stride / 2;  // where a segment's second point starts
     const colors = new Uint32Array(l.colors.buffer, l.colors.byteOffset, n);
     // Round caps cost the rasteriser; past a few thousand segments nobody sees them.
     ctx.lineCap = n < 20000 ? 'round' : 'butt';
@@ -110,11 +111,11 @@ export class View2D {
         ctx.beginPath();
         started = -1;
       }
-      const k = 6 * i;
+      const k = stride * i;
       // A segment that starts where the last one ended continues its polyline.
-      if (i === 0 || p[k] !== p[k - 3] || p[k + 1] !== p[k - 2] || started !== i)
+      if (started !== i || p[k] !== p[k - end] || p[k + 1] !== p[k - end + 1])
         ctx.moveTo(ox + s * p[k], oy - s * p[k + 1]);
-      ctx.lineTo(ox + s * p[k + 3], oy - s * p[k + 4]);
+      ctx.lineTo(ox + s * p[k + end], oy - s * p[k + end + 1]);
       started = i + 1;
     }
     if (color !== -1) ctx.stroke();

@@ -84,7 +84,12 @@ export class View3D {
     this.init();
     const group = new THREE.Group();
     const geometry = new THREE.BufferGeometry();
-    geometry.setAttribute('position', new THREE.BufferAttribute(l.positions, 3));
+    let xyz = l.positions;
+    if (l.stride === 4) {  // a flat scene: z = 0
+      xyz = new Float32Array(6 * l.segments);
+      for (let i = 0; i < 2 * l.segments; ++i) { xyz[3 * i] = l.positions[2 * i]; xyz[3 * i + 1] = l.positions[2 * i + 1]; }
+    }
+    geometry.setAttribute('position', new THREE.BufferAttribute(xyz, 3));
     const rgb = new Uint8Array(6 * l.segments);
     for (let i = 0; i < l.segments; ++i)
       for (let v = 0; v < 2; ++v)

@@ -173,7 +173,15 @@ try {
     assert.equal(download.suggestedFilename(), 'honda-monopodial-tree.' + format);
     assert.ok(check(fs.readFileSync(saved)), format + ' export reads back');
   }
+
+  // The picture of docs/studio.md: the tree in 3D, thumbnails loaded.
+  before = await pictures();
+  await page.$eval('#step', (s) => { s.value = 10; s.dispatchEvent(new Event('input')); });
+  await nextPicture(before);
+  await page.click('#view-tabs [data-view="3d"]');
+  await page.waitForTimeout(1500);
   await page.screenshot({ path: 'studio-screenshot.png' });
+  await page.click('#view-tabs [data-view="2d"]');
 
   console.log('- Speed');
   // Speed: keystroke to picture at ~10^5 segments, first picture at ~10^6.
