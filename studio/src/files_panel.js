@@ -8,7 +8,10 @@ function next() {
   if (loading || !queue.length) return;
   loading = true;
   const img = queue.shift();
-  img.onload = img.onerror = () => { loading = false; next(); };
+  img.onload = () => { loading = false; next(); };
+  // A model that does not parse has no thumbnail: an empty box, not a broken image.
+  img.onerror = () => { img.removeAttribute('src'); loading = false; next(); };
+  img.dataset.requested = 'true';
   img.src = img.dataset.src;
 }
 
@@ -48,4 +51,13 @@ export function showFiles(files, open) {
 export function markCurrent(path) {
   for (const row of document.querySelectorAll('#file-list .file'))
     row.classList.toggle('current', row.dataset.path === path);
+}
+
+// A saved or reloaded file gets a new thumbnail (the server renders it again).
+export function refreshThumbnail(path, mtime) {
+  const row = [...document.querySelectorAll('#file-list .file')].find((r) => r.dataset.path === path);
+  const img = row?.querySelector('img');
+  if (!img || !img.dataset.src) return;
+  img.dataset.src = img.dataset.src.replace(/&v=\d+$/, '') + '&v=' + mtime;
+  if (img.dataset.requested && !queue.includes(img)) { queue.push(img); next(); }
 }

@@ -7,7 +7,7 @@ import * as api from './api.js';
 import { lsystemLanguage } from './lsystem_language.js';
 import { View2D } from './view2d.js';
 import { View3D } from './view3d.js';
-import { showFiles, markCurrent } from './files_panel.js';
+import { showFiles, markCurrent, refreshThumbnail } from './files_panel.js';
 import { showDefines, writeBackChanges } from './defines_panel.js';
 
 const $ = (id) => document.getElementById(id);
@@ -247,6 +247,7 @@ async function saveNow() {
     state.savedText = t;
     state.mtime = r.mtime;
     $('save-state').textContent = 'saved';
+    refreshThumbnail(state.path, r.mtime);
   } catch (e) {
     $('save-state').textContent = 'not saved: ' + e.message;
   }
@@ -286,6 +287,7 @@ async function watch(path) {
       state.savedText = f.text;
       setText(f.text);
       $('save-state').textContent = 'reloaded from disk';
+      refreshThumbnail(path, r.mtime);
       refresh();
     } else {
       $('save-state').textContent = 'changed on disk (your edits kept)';
