@@ -217,14 +217,26 @@ TEST_F(StudioServerTest, DeriveSendsStatsAndSegmentsAsBinary) {
     EXPECT_EQ(meta["string"].get<std::string>().substr(0, 10), "-+XF-YFY-F");
     std::uint32_t header[4];
     std::memcpy(header, geometry.data(), sizeof header);
-    EXPECT_EQ(header[0], 0x314C4647u);
+    EXPECT_EQ(header[0], 0x324C4647u);
     EXPECT_EQ(header[1], 15u);
-    // Header, then 4 floats (a flat curve), a width and 4 colour bytes per segment.
-    EXPECT_EQ(geometry.size(), 48u + 15u * (16 + 4 + 4));
-    float firstSegment[4];
-    std::memcpy(firstSegment, geometry.data() + 48, sizeof firstSegment);
-    EXPECT_FLOAT_EQ(firstSegment[0], 0);
-    EXPECT_FLOAT_EQ(firstSegment[1], 0);
+    float bounds[6];
+    std::memcpy(bounds, geometry.data() + 16, sizeof bounds);
+    EXPECT_NEAR(bounds[0], 0, 1e-6);
+    EXPECT_FLOAT_EQ(bounds[3], 3);  // the step-2 curve spans 3 x 3 units
+    std::uint32_t paletteCount = 0;
+    std::memcpy(&paletteCount, geometry.data() + 52, 4);
+    ASSERT_GT(paletteCount, 0u);
+    // Header, palette, then 4 coordinates, a width and a colour (16 bits each) a segment,
+    // padded to 4 bytes.
+    const std::size_t segmentsAt = 56 + 4 * paletteCount;
+    EXPECT_EQ(geometry.size(), segmentsAt + 15 * 12);
+    // The first segment runs from (0, 0) up to (0, 1): a third of the box's height.
+    std::uint16_t first[4];
+    std::memcpy(first, geometry.data() + segmentsAt, sizeof first);
+    EXPECT_EQ(first[0], 0);
+    EXPECT_EQ(first[1], 0);
+    EXPECT_EQ(first[2], 0);
+    EXPECT_EQ(first[3], 65535 / 3);
 
     body["defines"] = {{"STEPS", 1}};
     body.erase("steps");

@@ -249,30 +249,45 @@ StudioPicture derivePicture(const ModelInput& input, const StudioLimits& limits,
 }
 
 std::string encodeLines(const Scene& scene) {
-    // One pass over the segments, writing each array by index: this runs on every
-    // keystroke for up to millions of segments.
+    // Twelve bytes a flat segment (sixteen in 3D): end points as 16-bit fractions of the
+    // bounding box, width and palette index as 16-bit numbers. Fewer bytes is what keeps
+    // the page fast; a 65536th of the picture is far below a pixel until zoomed 80 times.
     const std::size_t n = scene.segments.size();
     const std::size_t stride = scene.is3D ? 6 : 4;  // x y (z) per end
-    std::vector<float> positions(stride * n), widths(n);
-    std::vector<std::uint32_t> colors(n);
-    std::vector<std::uint32_t> paletteRgba;
-    for (const Rgb& c : scene.palette.empty() ? std::vector<Rgb>{Rgb{0, 0, 0}} : scene.palette)
-        paletteRgba.push_back(rgbaBytes(c));
-    const float widthScale = 1.0f / (scene.baseWidth > 0 ? scene.baseWidth : 1.0f);
+    const Bounds b = scene.bounds();
+    const bool empty = b.empty();
+    const Vec3 origin = empty ? Vec3{} : b.min;
+    const Vec3 size = empty ? Vec3{} : b.max - b.min;
+    auto quantizer = [](double extent) { return extent > 0 ? 65535.0 / extent : 0.0; };
+    const double qx = quantizer(size.x), qy = quantizer(size.y), qz = quantizer(size.z);
+    auto q = [](double v, double scale) {
+        return static_cast<std::uint16_t>(std::clamp(std::lround(v * scale), 0L, 65535L));
+    };
+    float maxWidth = 0;
+    for (const Segment& s : scene.segments) maxWidth = std::max(maxWidth, s.width);
+    const double widthScale = maxWidth > 0 ? 65535.0 / maxWidth : 0.0;
+
+    std::vector<std::uint16_t> positions(stride * n), widths(n), colors(n);
+    const std::size_t paletteSize = std::max<std::size_t>(scene.palette.size(), 1);
     double ink = 0;
     for (std::size_t i = 0; i < n; ++i) {
         const Segment& s = scene.segments[i];
-        float* p = positions.data() + stride * i;
+        std::uint16_t* p = positions.data() + stride * i;
+        const Vec3 a = s.a - origin, e = s.b - origin;
         if (stride == 6) {
-            p[0] = float(s.a.x), p[1] = float(s.a.y), p[2] = float(s.a.z);
-            p[3] = float(s.b.x), p[4] = float(s.b.y), p[5] = float(s.b.z);
+            p[0] = q(a.x, qx), p[1] = q(a.y, qy), p[2] = q(a.z, qz);
+            p[3] = q(e.x, qx), p[4] = q(e.y, qy), p[5] = q(e.z, qz);
         } else {
-            p[0] = float(s.a.x), p[1] = float(s.a.y), p[2] = float(s.b.x), p[3] = float(s.b.y);
+            p[0] = q(a.x, qx), p[1] = q(a.y, qy), p[2] = q(e.x, qx), p[3] = q(e.y, qy);
         }
-        widths[i] = s.width * widthScale;
-        colors[i] = paletteRgba[s.color % paletteRgba.size()];
+        widths[i] = q(s.width, widthScale);
+        colors[i] = static_cast<std::uint16_t>(s.color % paletteSize);
         ink += inkLength(s, scene.baseWidth);
     }
+    std::vector<std::uint32_t> palette;
+    for (std::size_t k = 0; k < paletteSize; ++k)
+        palette.push_back(rgbaBytes(scene.colorOf(static_cast<std::uint16_t>(k))));
+
     std::vector<float> triangles;
     std::vector<std::uint32_t> triangleColors;
     auto addOutline = [&](const std::vector<Vec3>& outline, const Rgb& color) {
@@ -295,28 +310,32 @@ std::string encodeLines(const Scene& scene) {
         addOutline(discOutline(Disc{s.centre, {0, 0, 1}, s.radius, s.color}, 24),
                    scene.colorOf(s.color));
 
-    const Bounds b = scene.bounds();
-    const bool empty = b.empty();
-    const std::uint32_t header[4] = {0x314C4647u, static_cast<std::uint32_t>(n),
+    const std::uint32_t header[4] = {0x324C4647u, static_cast<std::uint32_t>(n),
                                      static_cast<std::uint32_t>(triangleColors.size()),
                                      scene.is3D ? 1u : 0u};
     const float lineWidth = float(defaultLineWidth(ink, n > 0, b, RenderOptions{}));
-    const float extent[8] = {float(empty ? 0 : b.min.x),
-                             float(empty ? 0 : b.min.y),
-                             float(empty ? 0 : b.min.z),
-                             float(empty ? 0 : b.max.x),
-                             float(empty ? 0 : b.max.y),
-                             float(empty ? 0 : b.max.z),
-                             lineWidth,
-                             scene.baseWidth};
+    const float extent[10] = {float(origin.x),
+                              float(origin.y),
+                              float(origin.z),
+                              float(origin.x + size.x),
+                              float(origin.y + size.y),
+                              float(origin.z + size.z),
+                              lineWidth,
+                              scene.baseWidth,
+                              maxWidth,
+                              0};
+    const std::uint32_t paletteCount = static_cast<std::uint32_t>(palette.size());
     std::string out;
-    out.reserve(48 + 4 * (positions.size() + widths.size() + colors.size() + triangles.size() +
-                          triangleColors.size()));
+    out.reserve(64 + 4 * palette.size() + 2 * (positions.size() + 2 * n) + 4 +
+                4 * (triangles.size() + triangleColors.size()));
     appendRaw(out, header, 4);
-    appendRaw(out, extent, 8);
+    appendRaw(out, extent, 9);
+    appendRaw(out, &paletteCount, 1);
+    appendRaw(out, palette.data(), palette.size());
     appendRaw(out, positions.data(), positions.size());
     appendRaw(out, widths.data(), widths.size());
     appendRaw(out, colors.data(), colors.size());
+    out.append((4 - out.size() % 4) % 4, '\0');
     appendRaw(out, triangles.data(), triangles.size());
     appendRaw(out, triangleColors.data(), triangleColors.size());
     return out;

@@ -71,8 +71,9 @@ StudioPicture derivePicture(const ModelInput& input, const StudioLimits& limits,
                             const CancellationToken& cancel, const std::filesystem::path& scratch);
 
 // The scene as the 2D view and the 3D line view read it (docs/studio.md lays it out):
-// a 48-byte header, then segments (x y x y floats each, x y z x y z in a 3D scene),
-// widths, RGBA colours, and filled triangles (9 floats each) with their colours.
+// a 56-byte header, the palette, then segments (x y x y, or x y z x y z in a 3D scene, as
+// 16-bit fractions of the bounding box), 16-bit widths and palette indices, and filled
+// triangles (9 floats each) with their RGBA colours.
 std::string encodeLines(const Scene& scene);
 
 // The picture's mesh (stems as tubes, polygons, surfaces) as glTF binary.

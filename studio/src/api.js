@@ -58,26 +58,43 @@ export async function derive(model) {
   return { meta, lines: decodeLines(buffer, start) };
 }
 
-// The line buffer: header (magic, segments, triangles, flags; bounds, line width, base
-// width), positions (4 floats a segment, 6 in 3D), widths, RGBA bytes, triangles (9 floats), RGBA.
+// The line buffer (docs/studio.md): header (magic, segments, triangles, flags; bounds,
+// line width, base width, widest segment; palette size), the RGBA palette, end points as
+// 16-bit fractions of the bounds (4 a segment, 6 in 3D), 16-bit widths and palette
+// indices, then triangles (9 floats) with RGBA bytes.
 export function decodeLines(buffer, start) {
   const head = new Uint32Array(buffer, start, 4);
-  if (head[0] !== 0x314c4647) throw new Error('not a graftal line buffer');
+  if (head[0] !== 0x324c4647) throw new Error('not a graftal line buffer');
   const n = head[1], t = head[2];
-  const floats = new Float32Array(buffer, start + 16, 8);
-  let at = start + 48;
+  const floats = new Float32Array(buffer, start + 16, 9);
+  const paletteCount = new Uint32Array(buffer, start + 52, 1)[0];
+  let at = start + 56;
+  const palette = new Uint8Array(buffer, at, 4 * paletteCount); at += 4 * paletteCount;
   const stride = head[3] & 1 ? 6 : 4;  // x y (z) of both ends
-  const positions = new Float32Array(buffer, at, stride * n); at += 4 * stride * n;
-  const widths = new Float32Array(buffer, at, n); at += 4 * n;
-  const colors = new Uint8Array(buffer, at, 4 * n); at += 4 * n;
+  const positions = new Uint16Array(buffer, at, stride * n); at += 2 * stride * n;
+  const widths = new Uint16Array(buffer, at, n); at += 2 * n;
+  const colors = new Uint16Array(buffer, at, n); at += 2 * n;
+  at += (4 - (at % 4)) % 4;
   const triangles = new Float32Array(buffer, at, 9 * t); at += 36 * t;
   const triangleColors = new Uint8Array(buffer, at, 4 * t);
+  const min = [floats[0], floats[1], floats[2]], max = [floats[3], floats[4], floats[5]];
   return {
-    segments: n, triangleCount: t, is3D: (head[3] & 1) === 1, stride,
-    min: [floats[0], floats[1], floats[2]], max: [floats[3], floats[4], floats[5]],
-    lineWidth: floats[6], baseWidth: floats[7],
-    positions, widths, colors, triangles, triangleColors,
+    segments: n, triangleCount: t, is3D: (head[3] & 1) === 1, stride, min, max,
+    // A quantized coordinate q stands for min + q * step.
+    step: [0, 1, 2].map((k) => (max[k] - min[k]) / 65535),
+    lineWidth: floats[6], baseWidth: floats[7], widthStep: floats[8] / 65535,
+    palette, positions, widths, colors, triangles, triangleColors,
   };
+}
+
+// The segments' end points as floats (x y z per point, two points a segment).
+export function segmentPoints(l) {
+  const out = new Float32Array(6 * l.segments);
+  const p = l.positions, half = l.stride / 2;
+  for (let i = 0; i < 2 * l.segments; ++i)
+    for (let k = 0; k < 3; ++k)
+      out[3 * i + k] = k < half ? l.min[k] + p[half * i + k] * l.step[k] : 0;
+  return out;
 }
 
 export async function mesh(model) {

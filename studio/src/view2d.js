@@ -95,27 +95,31 @@ export class View2D {
     // A width-1 segment is l.lineWidth pixels in an 800-pixel picture; it keeps its
     // model size when zoomed.
     const perWidth = (l.lineWidth / View2D.fitScale(l, 800, 800)) * s;
-    const n = l.segments, p = l.positions, widths = l.widths;
+    const n = l.segments, p = l.positions, widths = l.widths, colors = l.colors;
     const stride = l.stride, end = stride / 2;  // where a segment's second point starts
-    const colors = new Uint32Array(l.colors.buffer, l.colors.byteOffset, n);
+    // Pixels from quantized coordinates: x = ax * q + bx, y = by - ay * q.
+    const ax = s * l.step[0], bx = ox + s * l.min[0];
+    const ay = s * l.step[1], by = oy - s * l.min[1];
+    const widthPixels = (perWidth * l.widthStep) / (l.baseWidth > 0 ? l.baseWidth : 1);
     // Round caps cost the rasteriser; past a few thousand segments nobody sees them.
     ctx.lineCap = n < 20000 ? 'round' : 'butt';
     ctx.lineJoin = 'bevel';
+    const styles = [];
     let color = -1, width = -1, started = -1;
     for (let i = 0; i < n; ++i) {
       if (colors[i] !== color || widths[i] !== width) {
         if (color !== -1) ctx.stroke();
         color = colors[i]; width = widths[i];
-        ctx.strokeStyle = rgba(l.colors, i);
-        ctx.lineWidth = Math.max(0.5, perWidth * width);
+        ctx.strokeStyle = styles[color] ??= rgba(l.palette, color);
+        ctx.lineWidth = Math.max(0.5, widthPixels * width);
         ctx.beginPath();
         started = -1;
       }
       const k = stride * i;
       // A segment that starts where the last one ended continues its polyline.
       if (started !== i || p[k] !== p[k - end] || p[k + 1] !== p[k - end + 1])
-        ctx.moveTo(ox + s * p[k], oy - s * p[k + 1]);
-      ctx.lineTo(ox + s * p[k + end], oy - s * p[k + end + 1]);
+        ctx.moveTo(ax * p[k] + bx, by - ay * p[k + 1]);
+      ctx.lineTo(ax * p[k + end] + bx, by - ay * p[k + end + 1]);
       started = i + 1;
     }
     if (color !== -1) ctx.stroke();

@@ -4,6 +4,7 @@
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+import { segmentPoints } from './api.js';
 
 export class View3D {
   constructor(container) {
@@ -84,16 +85,12 @@ export class View3D {
     this.init();
     const group = new THREE.Group();
     const geometry = new THREE.BufferGeometry();
-    let xyz = l.positions;
-    if (l.stride === 4) {  // a flat scene: z = 0
-      xyz = new Float32Array(6 * l.segments);
-      for (let i = 0; i < 2 * l.segments; ++i) { xyz[3 * i] = l.positions[2 * i]; xyz[3 * i + 1] = l.positions[2 * i + 1]; }
-    }
+    const xyz = segmentPoints(l);
     geometry.setAttribute('position', new THREE.BufferAttribute(xyz, 3));
     const rgb = new Uint8Array(6 * l.segments);
     for (let i = 0; i < l.segments; ++i)
       for (let v = 0; v < 2; ++v)
-        for (let c = 0; c < 3; ++c) rgb[6 * i + 3 * v + c] = l.colors[4 * i + c];
+        for (let c = 0; c < 3; ++c) rgb[6 * i + 3 * v + c] = l.palette[4 * l.colors[i] + c];
     geometry.setAttribute('color', new THREE.BufferAttribute(rgb, 3, true));
     group.add(new THREE.LineSegments(geometry, new THREE.LineBasicMaterial({ vertexColors: true })));
     if (l.triangleCount) {
