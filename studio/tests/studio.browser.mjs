@@ -155,6 +155,18 @@ try {
   const step3 = await pixels('#view2d');
   assert.ok(step3.ink > 0 && step3.ink < moved.ink, 'step 3 draws less than step 10');
 
+  console.log('- The string search and play');
+  await page.fill('#string-search', 'F(');
+  const matches = await page.textContent('#string-count');
+  const expected = await page.evaluate(() => window.studio.state.string.split('F(').length - 1);
+  assert.ok(expected > 0 && matches === `${expected} matches`, `search counts ${matches}`);
+  assert.equal(await page.$$eval('#string mark', (m) => m.length), expected);
+  await page.fill('#string-search', '');
+  before = await pictures();
+  await page.click('#play');
+  await page.waitForFunction(() => document.getElementById('step').value === document.getElementById('step').max &&
+    window.studio.state.steps === Number(document.getElementById('step').max), null, { timeout: 60000 });
+  await page.waitForFunction((n) => window.studio.pictures >= n + 11, before, { timeout: 60000 });
   console.log('- A change made on disk');
   // A change made on disk by another editor reloads.
   fs.writeFileSync(file, fs.readFileSync(file, 'utf8').replace('#define A2 80', '#define A2 30'));
