@@ -56,6 +56,7 @@ class StudioServerTest : public ::testing::Test {
         writeText(root / "sub" / "nested.l", kHilbert);
         writeText(base / "secret.l", "outside the root\n");
         writeText(base / "assets" / "index.html", "<!doctype html><title>studio</title>");
+        writeText(base / "assets" / "studio.js", std::string(200'000, ';'));
         fs::create_symlink(base / "secret.l", root / "link-out.l");
         fs::create_symlink(base, root / "dir-out");
 
@@ -103,6 +104,13 @@ TEST_F(StudioServerTest, ServesThePageAndInfo) {
     ASSERT_TRUE(page);
     EXPECT_EQ(page->status, 200);
     EXPECT_NE(page->body.find("<title>studio</title>"), std::string::npos);
+    // The bundle goes out as it is: compressing it on every request took seconds.
+    auto script = client->Get("/studio.js", {{"Accept-Encoding", "gzip, deflate, br"}});
+    ASSERT_TRUE(script);
+    EXPECT_EQ(script->status, 200);
+    EXPECT_FALSE(script->has_header("Content-Encoding"));
+    EXPECT_EQ(script->body.size(), 200'000u);
+    EXPECT_EQ(script->get_header_value("Content-Type").rfind("application/javascript", 0), 0u);
     auto info = client->Get("/api/info");
     ASSERT_TRUE(info);
     EXPECT_EQ(json::parse(info->body)["root"], fs::canonical(root).string());
