@@ -15,6 +15,10 @@ MUSIC_PACKAGES := libsmf-dev libfluidsynth-dev timgm6mb-soundfont lilypond
 NODE_PACKAGES := $(shell command -v node >/dev/null 2>&1 || echo nodejs) \
                  $(shell command -v npm >/dev/null 2>&1 || echo npm)
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
+# graftal studio: its server is built on cpp-httplib; its browser tests drive Debian's
+# chromium (the page's npm packages, playwright-core among them, come from
+# studio/package-lock.json into $(BUILD_DIR)/studio-node when the build bundles the page).
+STUDIO_PACKAGES := libcpp-httplib-dev chromium
 
 # The fuzzing build: Debian's clang and its libFuzzer runtime (libclang-rt-dev depends on
 # the default clang's libclang-rt-N-dev, which holds libclang_rt.fuzzer-x86_64.a). The whole
@@ -43,7 +47,7 @@ fi
 endef
 
 deps:
-	$(call install-missing,$(DEBIAN_PACKAGES) $(NODE_PACKAGES) $(MUSIC_PACKAGES))
+	$(call install-missing,$(DEBIAN_PACKAGES) $(NODE_PACKAGES) $(MUSIC_PACKAGES) $(STUDIO_PACKAGES))
 
 configure: deps
 	@cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release > /dev/null

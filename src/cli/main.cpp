@@ -7,6 +7,7 @@
 #include "graftal/diagnostics.hpp"
 #include "graftal/file_format.hpp"
 #include "music_command.hpp"
+#include "studio_command.hpp"
 
 namespace {
 
@@ -184,6 +185,9 @@ int main(int argc, char** argv) {
     addInputOptions(*music, in, memoryLimit);
     graftal::cli::addMusicOptions(*music, musicOut);
 
+    graftal::cli::StudioCommandOptions studio;
+    graftal::cli::addStudioCommand(app, studio);
+
     if (std::string problem = usageProblem(app, argc, argv); !problem.empty()) {
         std::cerr << "graftal: error: " << problem << "\n";
         return 2;
@@ -198,6 +202,7 @@ int main(int argc, char** argv) {
 
     try {
         if (!memoryLimit.empty()) in.memoryLimit = graftal::cli::parseByteSize(memoryLimit);
+        if (*studio.command) return graftal::cli::runStudio(studio);
         if (*derive) return graftal::cli::runDerive(in, homomorphism);
         if (*stats) return graftal::cli::runStats(in, !noGeometry, predict);
         if (*music) return graftal::cli::runMusic(in, musicOut);

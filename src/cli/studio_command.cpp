@@ -1,0 +1,75 @@
+// `graftal studio [PATH] [--port N] [--no-open]`: the live editor in the browser. The page
+// comes from share/graftal/studio beside the program (built by `make` from studio/).
+#include <pthread.h>
+#include <unistd.h>
+#include <CLI/CLI.hpp>
+#include <csignal>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+
+#include "studio/studio_server.hpp"
+#include "studio_command.hpp"
+
+namespace graftal::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The folder of the page: $GRAFTAL_STUDIO_ASSETS, else share/graftal/studio beside the
+// program (the build tree) or one folder up (an installed bin/).
+fs::path studioAssets() {
+    if (const char* env = std::getenv("GRAFTAL_STUDIO_ASSETS")) return env;
+    std::error_code ec;
+    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    if (ec) return {};
+    for (const fs::path& candidate : {exe.parent_path() / "share/graftal/studio",
+                                      exe.parent_path().parent_path() / "share/graftal/studio"})
+        if (fs::exists(candidate / "index.html")) return candidate;
+    return {};
+}
+
+}  // namespace
+
+void addStudioCommand(CLI::App& app, StudioCommandOptions& options) {
+    options.command = app.add_subcommand(
+        "studio", "edit an L-system in the browser and watch it grow, live (docs/studio.md)");
+    options.command->add_option("path", options.path, "a folder or a .l file (default: .)");
+    options.command->add_option("--port", options.port, "port on 127.0.0.1 (default: a free one)")
+        ->check(CLI::Range(0, 65535));
+    options.command->add_flag("--no-open", options.noOpen, "do not open the browser");
+}
+
+int runStudio(const StudioCommandOptions& options) {
+    studio::StudioOptions server;
+    server.root = options.path.empty() ? fs::path(".") : fs::path(options.path);
+    server.assets = studioAssets();
+    if (server.assets.empty())
+        std::cerr << "graftal: warning: the studio's page was not built (make builds it); "
+                     "only its API is served\n";
+
+    // SIGINT and SIGTERM are taken by this thread, so that the server stops cleanly
+    // (its scratch folder removed) instead of dying mid-write.
+    sigset_t signals;
+    sigemptyset(&signals);
+    sigaddset(&signals, SIGINT);
+    sigaddset(&signals, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+
+    studio::StudioServer studio(server);
+    const int port = studio.start(options.port);
+    const std::string address = "http://127.0.0.1:" + std::to_string(port) + "/";
+    std::cout << "graftal studio: " << address << " (Ctrl-C stops it)" << std::endl;
+    if (!options.noOpen) {
+        const std::string command = "xdg-open '" + address + "' >/dev/null 2>&1 &";
+        if (std::system(command.c_str()) != 0)
+            std::cerr << "graftal: note: open " << address << " in a browser\n";
+    }
+    int received = 0;
+    sigwait(&signals, &received);
+    studio.stop();
+    return 0;
+}
+
+}  // namespace graftal::cli

@@ -1,0 +1,395 @@
+// The studio's computations, each through the library's own calls: parse(), the
+// pipeline's stream decision and derivation options, interpret(), buildMesh() and render().
+#include "studio/studio_model.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "graftal/bspline.hpp"
+#include "graftal/color_map.hpp"
+#include "graftal/mesh.hpp"
+#include "graftal/output.hpp"
+#include "graftal/pipeline.hpp"
+#include "graftal/projection.hpp"
+#include "graftal/streamed_picture.hpp"
+#include "graftal/surface.hpp"
+#include "graftal/turtle.hpp"
+
+namespace graftal::studio {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+double millisecondsSince(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// A fresh file name in the scratch folder: requests run at the same time.
+fs::path scratchFile(const fs::path& scratch, const std::string& extension) {
+    static std::atomic<unsigned long> counter{0};
+    return scratch / ("s" + std::to_string(counter.fetch_add(1)) + "." + extension);
+}
+
+std::string readAndRemove(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream bytes;
+    bytes << in.rdbuf();
+    std::error_code ec;
+    fs::remove(path, ec);
+    return bytes.str();
+}
+
+Model parseOrThrow(const ModelInput& input) {
+    ParseOptions options;
+    options.fileName = input.file.string();
+    options.defines = input.defines;
+    ParseResult result = parse(input.text, options);
+    if (!result.ok()) throw Error(result.errors());
+    return std::move(result.model);
+}
+
+DeriveRequest deriveRequest(const ModelInput& input, const StudioLimits& limits,
+                            const CancellationToken& cancel) {
+    DeriveRequest request;
+    request.steps = input.steps;
+    request.memoryLimit = limits.memoryLimit;
+    request.streamLimit = limits.streamLimit;
+    request.cancel = cancel;
+    // A derivation that runs too long is stopped like a superseded one.
+    const auto deadline =
+        Clock::now() + std::chrono::milliseconds(static_cast<long>(limits.deriveSeconds * 1000));
+    CancellationToken token = cancel;
+    request.progress = [deadline, token](int, std::size_t) mutable {
+        if (Clock::now() > deadline) token.cancel();
+    };
+    return request;
+}
+
+int checkedSteps(const Model& model, const DeriveRequest& request, const StudioLimits& limits) {
+    const int steps = requestedSteps(model, request);
+    if (steps > limits.maxSteps)
+        throw Error(SourceLocation{model.lsystem.file, 0, 0},
+                    "derivation length " + std::to_string(steps) +
+                        " is over the studio's limit of " + std::to_string(limits.maxSteps));
+    return steps;
+}
+
+nlohmann::json boundsJson(const Bounds& b) {
+    if (b.empty()) return nullptr;
+    return {{"min", {b.min.x, b.min.y, b.min.z}}, {"max", {b.max.x, b.max.y, b.max.z}}};
+}
+
+// Surfaces a file declares are read beside it; unknown files fall back to the built-ins
+// (as render() does).
+SurfaceLibrary surfacesFor(const ViewSettings& view, const fs::path& folder) {
+    SurfaceLibrary lib = SurfaceLibrary::builtin();
+    for (const auto& decl : view.surfaces) {
+        Surface s;
+        const fs::path path = folder / decl.file;
+        if (fs::exists(path)) {
+            s = loadSurface(path);
+        } else if (const Surface* builtin = lib.find(fs::path(decl.file).stem().string())) {
+            s = *builtin;
+        } else {
+            throw Error(decl.location, "surface file '" + decl.file + "' not found");
+        }
+        s.name = decl.name;
+        s.size *= decl.scale;
+        lib.add(std::move(s));
+    }
+    return lib;
+}
+
+template <typename T>
+void appendRaw(std::string& out, const T* data, std::size_t count) {
+    out.append(reinterpret_cast<const char*>(data), count * sizeof(T));
+}
+
+// R, G, B, A bytes in memory order (a little-endian uint32).
+std::uint32_t rgbaBytes(const Rgb& c) {
+    auto byte = [](double v) {
+        return static_cast<std::uint32_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255));
+    };
+    return byte(c.r) | byte(c.g) << 8 | byte(c.b) << 16 | 0xFF000000u;
+}
+
+}  // namespace
+
+std::vector<NumericDefine> numericDefines(const std::string& text) {
+    std::vector<NumericDefine> defines;
+    std::istringstream lines(text);
+    std::string line;
+    for (int number = 1; std::getline(lines, line); ++number) {
+        std::istringstream words(line);
+        std::string directive, name, value;
+        if (!(words >> directive >> name >> value) || directive != "#define") continue;
+        const char* begin = value.c_str();
+        char* end = nullptr;
+        const double v = std::strtod(begin, &end);
+        if (end == begin || *end != '\0' || !std::isfinite(v)) continue;
+        std::string rest;
+        if (words >> rest && rest.rfind("/*", 0) != 0) continue;  // an expression, not a number
+        defines.push_back({name, v, number, value.find_first_of(".eE") == std::string::npos});
+    }
+    return defines;
+}
+
+nlohmann::json diagnosticsJson(const std::vector<Diagnostic>& diagnostics) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const Diagnostic& d : diagnostics) {
+        const char* severity = d.severity == Severity::Error     ? "error"
+                               : d.severity == Severity::Warning ? "warning"
+                                                                 : "note";
+        list.push_back({{"severity", severity},
+                        {"line", d.location.line},
+                        {"column", d.location.column},
+                        {"endLine", d.location.endLine},
+                        {"endColumn", d.location.endColumn},
+                        {"message", d.message},
+                        {"text", d.toString()}});
+    }
+    return list;
+}
+
+nlohmann::json parseReport(const ModelInput& input) {
+    ParseOptions options;
+    options.fileName = input.file.string();
+    options.defines = input.defines;
+    const ParseResult result = parse(input.text, options);
+    nlohmann::json defines = nlohmann::json::array();
+    for (const NumericDefine& d : numericDefines(input.text))
+        defines.push_back(
+            {{"name", d.name}, {"value", d.value}, {"line", d.line}, {"integer", d.integer}});
+    return {{"ok", result.ok()},
+            {"diagnostics", diagnosticsJson(result.diagnostics)},
+            {"defines", defines},
+            {"derivationLength", result.model.lsystem.derivationLength},
+            {"name", result.model.lsystem.name}};
+}
+
+StudioPicture derivePicture(const ModelInput& input, const StudioLimits& limits,
+                            const CancellationToken& cancel, const fs::path& scratch) {
+    StudioPicture picture;
+    picture.model = parseOrThrow(input);
+    const Model& model = picture.model;
+    const DeriveRequest request = deriveRequest(input, limits, cancel);
+    picture.steps = checkedSteps(model, request, limits);
+    const int steps = picture.steps;
+    const auto start = Clock::now();
+
+    std::vector<Diagnostic> notes;
+    const bool pixelBound = streamedPictureIsSummarised(model, steps, request.memoryLimit);
+    if (shouldStream(model, steps, request, true, true, pixelBound, notes)) {
+        // Too large to hold: the streamed picture render() draws, as a PNG.
+        RenderRequest render;
+        static_cast<DeriveRequest&>(render) = request;
+        render.steps = steps;
+        render.output = scratchFile(scratch, "png");
+        render.sourceFile = input.file;
+        graftal::render(model, render);
+        picture.summaryPng = readAndRemove(render.output);
+        for (const Diagnostic& d : notes) picture.notes.push_back(d.message);
+        picture.notes.push_back("the string is too large to draw here: a summarised picture");
+        picture.stats = {
+            {"steps", steps}, {"summarised", true}, {"deriveMs", millisecondsSince(start)}};
+        return picture;
+    }
+
+    const DerivationOptions options = derivationOptions(model, request);
+    ModuleString modules = derive(model, steps, options);
+    const double deriveMs = millisecondsSince(start);
+    cancel.check();
+    for (std::size_t i = 0; i < modules.size() && i < limits.stringHeadModules; ++i)
+        appendModuleText(picture.stringHead, model.lsystem.symbols, modules.symbol(i),
+                         modules.params(i));
+    const std::size_t moduleCount = modules.size();
+
+    const auto drawStart = Clock::now();
+    Scene scene = interpret(model, applyHomomorphism(model.lsystem, modules, options));
+    modules = ModuleString{};
+    cancel.check();
+    if (int n = model.view.splineSubdivisions; n > 0) scene = smoothSegments(scene, n);
+    if (!model.view.colorMap.empty())
+        scene.palette = loadColorMap(input.file.parent_path() / model.view.colorMap);
+    const double drawMs = millisecondsSince(drawStart);
+
+    const std::size_t organs =
+        scene.polygonCount() + scene.surfaces.size() + scene.discs.size() + scene.spheres.size();
+    picture.stats = {{"steps", steps},
+                     {"modules", moduleCount},
+                     {"segments", scene.segments.size()},
+                     {"polygons", organs},
+                     {"bbox", boundsJson(scene.bounds())},
+                     {"is3D", scene.is3D},
+                     {"deriveMs", deriveMs},
+                     {"drawMs", drawMs},
+                     {"summarised", false}};
+    if (scene.segments.size() > limits.segmentBudget) {
+        // Over the budget the browser gets a picture, not the segments.
+        RenderOptions render;
+        if (model.view.background) render.background = *model.view.background;
+        const fs::path png = scratchFile(scratch, "png");
+        writeImage(scene.is3D ? projectScene(scene, ViewDirection::Front) : scene, render, png);
+        picture.summaryPng = readAndRemove(png);
+        picture.notes.push_back(std::to_string(scene.segments.size()) +
+                                " segments are over the studio's budget of " +
+                                std::to_string(limits.segmentBudget) + ": a summarised picture");
+        picture.stats["summarised"] = true;
+        scene = Scene{};
+    }
+    picture.scene = std::move(scene);
+    return picture;
+}
+
+std::string encodeLines(const Scene& scene) {
+    // Twelve bytes a flat segment (sixteen in 3D): end points as 16-bit fractions of the
+    // bounding box, width and palette index as 16-bit numbers. Fewer bytes is what keeps
+    // the page fast; a 65536th of the picture is far below a pixel until zoomed 80 times.
+    const std::size_t n = scene.segments.size();
+    const std::size_t stride = scene.is3D ? 6 : 4;  // x y (z) per end
+    const Bounds b = scene.bounds();
+    const bool empty = b.empty();
+    const Vec3 origin = empty ? Vec3{} : b.min;
+    const Vec3 size = empty ? Vec3{} : b.max - b.min;
+    auto quantizer = [](double extent) { return extent > 0 ? 65535.0 / extent : 0.0; };
+    const double qx = quantizer(size.x), qy = quantizer(size.y), qz = quantizer(size.z);
+    auto q = [](double v, double scale) {
+        return static_cast<std::uint16_t>(std::clamp(std::lround(v * scale), 0L, 65535L));
+    };
+    float maxWidth = 0;
+    for (const Segment& s : scene.segments) maxWidth = std::max(maxWidth, s.width);
+    const double widthScale = maxWidth > 0 ? 65535.0 / maxWidth : 0.0;
+
+    std::vector<std::uint16_t> positions(stride * n), widths(n), colors(n);
+    const std::size_t paletteSize = std::max<std::size_t>(scene.palette.size(), 1);
+    double ink = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const Segment& s = scene.segments[i];
+        std::uint16_t* p = positions.data() + stride * i;
+        const Vec3 a = s.a - origin, e = s.b - origin;
+        if (stride == 6) {
+            p[0] = q(a.x, qx), p[1] = q(a.y, qy), p[2] = q(a.z, qz);
+            p[3] = q(e.x, qx), p[4] = q(e.y, qy), p[5] = q(e.z, qz);
+        } else {
+            p[0] = q(a.x, qx), p[1] = q(a.y, qy), p[2] = q(e.x, qx), p[3] = q(e.y, qy);
+        }
+        widths[i] = q(s.width, widthScale);
+        colors[i] = static_cast<std::uint16_t>(s.color % paletteSize);
+        ink += inkLength(s, scene.baseWidth);
+    }
+    std::vector<std::uint32_t> palette;
+    for (std::size_t k = 0; k < paletteSize; ++k)
+        palette.push_back(rgbaBytes(scene.colorOf(static_cast<std::uint16_t>(k))));
+
+    std::vector<float> triangles;
+    std::vector<std::uint32_t> triangleColors;
+    auto addOutline = [&](const std::vector<Vec3>& outline, const Rgb& color) {
+        const std::vector<std::uint32_t> index = triangulatePolygon(outline);
+        for (std::size_t i = 0; i + 2 < index.size(); i += 3) {
+            for (int k = 0; k < 3; ++k) {
+                const Vec3& p = outline[index[i + k]];
+                triangles.insert(triangles.end(), {float(p.x), float(p.y), float(p.z)});
+            }
+            triangleColors.push_back(rgbaBytes(color));
+        }
+    };
+    for (std::size_t k = 0; k < scene.polygonCount(); ++k) {
+        const auto poly = scene.polygon(k);
+        addOutline(std::vector<Vec3>(poly.begin(), poly.end()),
+                   scene.colorOf(scene.polygonColor[k]));
+    }
+    for (const Disc& d : scene.discs) addOutline(discOutline(d, 24), scene.colorOf(d.color));
+    for (const Sphere& s : scene.spheres)
+        addOutline(discOutline(Disc{s.centre, {0, 0, 1}, s.radius, s.color}, 24),
+                   scene.colorOf(s.color));
+
+    const std::uint32_t header[4] = {0x324C4647u, static_cast<std::uint32_t>(n),
+                                     static_cast<std::uint32_t>(triangleColors.size()),
+                                     scene.is3D ? 1u : 0u};
+    const float lineWidth = float(defaultLineWidth(ink, n > 0, b, RenderOptions{}));
+    const float extent[10] = {float(origin.x),
+                              float(origin.y),
+                              float(origin.z),
+                              float(origin.x + size.x),
+                              float(origin.y + size.y),
+                              float(origin.z + size.z),
+                              lineWidth,
+                              scene.baseWidth,
+                              maxWidth,
+                              0};
+    const std::uint32_t paletteCount = static_cast<std::uint32_t>(palette.size());
+    std::string out;
+    out.reserve(64 + 4 * palette.size() + 2 * (positions.size() + 2 * n) + 4 +
+                4 * (triangles.size() + triangleColors.size()));
+    appendRaw(out, header, 4);
+    appendRaw(out, extent, 9);
+    appendRaw(out, &paletteCount, 1);
+    appendRaw(out, palette.data(), palette.size());
+    appendRaw(out, positions.data(), positions.size());
+    appendRaw(out, widths.data(), widths.size());
+    appendRaw(out, colors.data(), colors.size());
+    out.append((4 - out.size() % 4) % 4, '\0');
+    appendRaw(out, triangles.data(), triangles.size());
+    appendRaw(out, triangleColors.data(), triangleColors.size());
+    return out;
+}
+
+std::string meshGlb(const StudioPicture& picture, const fs::path& scratch) {
+    Scene scene = picture.scene;
+    if (picture.model.view.colorMap.empty()) scene.palette = defaultPalette3D();
+    const SurfaceLibrary surfaces =
+        surfacesFor(picture.model.view, fs::path(picture.model.lsystem.file).parent_path());
+    MeshOptions options;
+    options.tubeSides = 6;
+    // Stems thinner than about a pixel of an 800-pixel view are widened so that they show.
+    if (const Bounds b = scene.bounds(); !b.empty()) {
+        const double extent = std::max({b.max.x - b.min.x, b.max.y - b.min.y, b.max.z - b.min.z});
+        options.minimumRadius = 0.5 * extent / 500.0;
+    }
+    const Mesh mesh = buildMesh(scene, options, &surfaces);
+    const fs::path glb = scratchFile(scratch, "glb");
+    writeGlb(mesh, glb);
+    return readAndRemove(glb);
+}
+
+std::string exportFile(const ModelInput& input, const std::string& extension,
+                       const StudioLimits& limits, const CancellationToken& cancel,
+                       const fs::path& scratch) {
+    const Model model = parseOrThrow(input);
+    RenderRequest request;
+    static_cast<DeriveRequest&>(request) = deriveRequest(input, limits, cancel);
+    checkedSteps(model, request, limits);
+    request.output = scratchFile(scratch, extension);
+    request.sourceFile = input.file;
+    checkRenderRequest(request);
+    render(model, request);
+    if (extension == "obj") {
+        std::error_code ec;
+        fs::remove(fs::path(request.output).replace_extension(".mtl"), ec);
+    }
+    return readAndRemove(request.output);
+}
+
+std::string thumbnailPng(const fs::path& file, int size, const StudioLimits& limits,
+                         const fs::path& scratch) {
+    ParseResult parsed = loadModel(file);
+    if (!parsed.ok()) throw Error(parsed.errors());
+    RenderRequest request;
+    static_cast<DeriveRequest&>(request) =
+        deriveRequest(ModelInput{{}, file, std::nullopt, {}}, limits, CancellationToken{});
+    checkedSteps(parsed.model, request, limits);
+    request.output = scratchFile(scratch, "png");
+    request.picture.width = request.picture.height = size;
+    request.samplesPerPixel = 1;
+    render(parsed.model, request);
+    return readAndRemove(request.output);
+}
+
+}  // namespace graftal::studio

@@ -1,0 +1,92 @@
+// What the studio computes for a page: a parse report, a derived picture with its stats,
+// and the bytes the browser draws (line segments as typed arrays, meshes as glTF binary,
+// exported files through the pipeline's render()).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "graftal/cancellation.hpp"
+#include "graftal/diagnostics.hpp"
+#include "graftal/model.hpp"
+#include "graftal/scene.hpp"
+
+namespace graftal::studio {
+
+// What one request may cost: the server refuses or summarises past these.
+struct StudioLimits {
+    std::size_t bodyBytes = std::size_t(1) << 20;    // a request body (a model's text)
+    std::size_t memoryLimit = std::size_t(1) << 30;  // a derivation's strings
+    std::uint64_t streamLimit = 10'000'000'000ull;   // the largest string streamed
+    std::uint64_t segmentBudget = 2'000'000;         // more: a summarised picture
+    std::uint64_t meshSegmentBudget = 150'000;       // more: the 3D view draws lines
+    int maxSteps = 10'000;                           // derivation length
+    std::size_t stringHeadModules = 2'000;           // modules of the string shown
+    double deriveSeconds = 60;                       // then the derivation is stopped
+};
+
+// A model as the page holds it: its text (perhaps unsaved), where it lives and the
+// overrides the page's sliders set.
+struct ModelInput {
+    std::string text;
+    std::filesystem::path file;  // absolute; names in diagnostics, surfaces beside it
+    std::optional<int> steps;    // empty: the file's derivation length
+    std::map<std::string, std::string> defines;
+};
+
+// A `#define NAME number` line of the text, for a slider.
+struct NumericDefine {
+    std::string name;
+    double value = 0;
+    int line = 0;  // 1-based
+    bool integer = false;
+};
+std::vector<NumericDefine> numericDefines(const std::string& text);
+
+nlohmann::json diagnosticsJson(const std::vector<Diagnostic>& diagnostics);
+
+// {ok, diagnostics, defines, derivationLength, name}: never throws for bad text.
+nlohmann::json parseReport(const ModelInput& input);
+
+// A derived model ready to draw: its scene, or a summarised PNG when over the budget.
+struct StudioPicture {
+    Model model;
+    int steps = 0;
+    Scene scene;
+    std::string summaryPng;  // non-empty: the scene was too large and is left empty
+    std::string stringHead;  // the first modules of the derived string
+    std::vector<std::string> notes;
+    nlohmann::json stats;  // modules, segments, polygons, bbox, deriveMs, drawMs, is3D
+};
+
+// Parses, derives and interprets. Throws Error (with every parse error), Cancelled when
+// `cancel` is raised or the derivation outlasts the limit.
+StudioPicture derivePicture(const ModelInput& input, const StudioLimits& limits,
+                            const CancellationToken& cancel, const std::filesystem::path& scratch);
+
+// The scene as the 2D view and the 3D line view read it (docs/studio.md lays it out):
+// a 56-byte header, the palette, then segments (x y x y, or x y z x y z in a 3D scene, as
+// 16-bit fractions of the bounding box), 16-bit widths and palette indices, and filled
+// triangles (9 floats each) with their RGBA colours.
+std::string encodeLines(const Scene& scene);
+
+// The picture's mesh (stems as tubes, polygons, surfaces) as glTF binary.
+std::string meshGlb(const StudioPicture& picture, const std::filesystem::path& scratch);
+
+// The model rendered by render() to a file of `extension` (png, svg, pdf, glb, obj, ply);
+// its bytes.
+std::string exportFile(const ModelInput& input, const std::string& extension,
+                       const StudioLimits& limits, const CancellationToken& cancel,
+                       const std::filesystem::path& scratch);
+
+// A small PNG of a model file as render() draws it.
+std::string thumbnailPng(const std::filesystem::path& file, int size, const StudioLimits& limits,
+                         const std::filesystem::path& scratch);
+
+}  // namespace graftal::studio

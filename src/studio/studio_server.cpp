@@ -1,0 +1,402 @@
+// The studio's routes. Handlers run on httplib's thread pool; each turns the library's
+// errors into JSON (with line:column) so that no model can take the server down.
+#include "studio/studio_server.hpp"
+
+#include <httplib.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <mutex>
+#include <sstream>
+#include <thread>
+
+#include "graftal/atomic_file.hpp"
+#include "graftal/file_format.hpp"
+#include "studio/studio_sessions.hpp"
+
+namespace graftal::studio {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+// A request the page should not have sent (bad JSON, a missing field): 400.
+class BadRequest : public std::runtime_error {
+  public:
+    using std::runtime_error::runtime_error;
+};
+
+void sendJson(httplib::Response& res, const json& body, int status = 200) {
+    res.status = status;
+    res.set_content(body.dump(), "application/json; charset=utf-8");
+}
+
+void sendError(httplib::Response& res, int status, const std::string& message,
+               const std::vector<Diagnostic>& diagnostics = {}) {
+    sendJson(res, {{"error", message}, {"diagnostics", diagnosticsJson(diagnostics)}}, status);
+}
+
+std::string readFile(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(SourceLocation{path.string(), 0, 0}, "cannot read the file");
+    std::ostringstream bytes;
+    bytes << in.rdbuf();
+    return bytes.str();
+}
+
+json parseBody(const httplib::Request& req) {
+    try {
+        json body = json::parse(req.body);
+        if (!body.is_object()) throw BadRequest("the body must be a JSON object");
+        return body;
+    } catch (const json::exception& e) {
+        throw BadRequest(std::string("the body is not JSON: ") + e.what());
+    }
+}
+
+bool isIdentifier(const std::string& s) {
+    if (s.empty() || s.size() > 64) return false;
+    for (char c : s)
+        if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_')) return false;
+    return !std::isdigit(static_cast<unsigned char>(s[0]));
+}
+
+const char* contentTypeFor(const std::string& extension) {
+    if (extension == "png") return "image/png";
+    if (extension == "svg") return "image/svg+xml; charset=utf-8";
+    if (extension == "pdf") return "application/pdf";
+    if (extension == "glb") return "model/gltf-binary";
+    return "application/octet-stream";
+}
+
+}  // namespace
+
+struct StudioServer::Impl {
+    StudioOptions options;
+    StudioRoot root;
+    fs::path scratch;
+    httplib::Server server;
+    std::thread thread;
+    StudioSessions sessions;
+    std::atomic<bool> stopping{false};
+    int port = 0;
+    std::mutex thumbnailMutex;  // one thumbnail at a time: the live view comes first
+    std::map<std::string, std::pair<std::int64_t, std::string>> thumbnails;
+
+    explicit Impl(StudioOptions o) : options(std::move(o)), root(options.root) {
+        scratch =
+            fs::temp_directory_path() / ("graftal-studio-" + std::to_string(::getpid()) + "-" +
+                                         std::to_string(reinterpret_cast<std::uintptr_t>(this)));
+        fs::create_directories(scratch);
+        routes();
+    }
+
+    ~Impl() {
+        std::error_code ec;
+        fs::remove_all(scratch, ec);
+    }
+
+    // Runs a handler and answers every failure as JSON.
+    template <typename F>
+    httplib::Server::Handler guarded(F handler) {
+        return [handler](const httplib::Request& req, httplib::Response& res) {
+            try {
+                handler(req, res);
+            } catch (const PathRefused& e) {
+                sendError(res, 403, e.messages());
+            } catch (const Cancelled&) {
+                sendJson(res,
+                         {{"error", "cancelled: a newer request replaced it"}, {"cancelled", true}},
+                         409);
+            } catch (const Error& e) {
+                sendError(res, 422, e.messages(), e.diagnostics());
+            } catch (const BadRequest& e) {
+                sendError(res, 400, e.what());
+            } catch (const std::bad_alloc&) {
+                sendError(res, 507, "out of memory: lower the steps");
+            } catch (const std::exception& e) {
+                sendError(res, 500, e.what());
+            }
+        };
+    }
+
+    ModelInput modelInput(const json& body) const {
+        ModelInput input;
+        if (!body.contains("text") || !body["text"].is_string())
+            throw BadRequest("the body needs the model's \"text\"");
+        input.text = body["text"].get<std::string>();
+        if (body.contains("path") && body["path"].is_string() &&
+            !body["path"].get<std::string>().empty())
+            input.file = root.resolve(body["path"].get<std::string>(), false);
+        else
+            input.file = root.folder() / "untitled.l";
+        if (body.contains("steps") && !body["steps"].is_null()) {
+            if (!body["steps"].is_number_integer())
+                throw BadRequest("\"steps\" must be a whole number");
+            const int steps = body["steps"].get<int>();
+            if (steps < 0) throw BadRequest("\"steps\" may not be negative");
+            input.steps = steps;
+        }
+        if (body.contains("defines") && body["defines"].is_object()) {
+            if (body["defines"].size() > 200) throw BadRequest("too many defines");
+            for (const auto& [name, value] : body["defines"].items()) {
+                if (!isIdentifier(name)) throw BadRequest("'" + name + "' is not a define's name");
+                if (value.is_number())
+                    input.defines[name] = value.dump();
+                else if (value.is_string() && value.get<std::string>().size() < 200)
+                    input.defines[name] = value.get<std::string>();
+                else
+                    throw BadRequest("the define " + name + " needs a number");
+            }
+        }
+        return input;
+    }
+
+    static std::string inputKey(const ModelInput& input) {
+        std::string key =
+            input.file.string() + '\n' + (input.steps ? std::to_string(*input.steps) : "-") + '\n';
+        for (const auto& [name, value] : input.defines) key += name + '=' + value + '\n';
+        return key + input.text;
+    }
+
+    static std::string sessionOf(const json& body) {
+        if (body.contains("session") && body["session"].is_string())
+            return body["session"].get<std::string>().substr(0, 100);
+        return "default";
+    }
+
+    void serveAsset(const std::string& url, const std::string& file, const char* type) {
+        server.Get(url,
+                   guarded([this, file, type](const httplib::Request&, httplib::Response& res) {
+                       const fs::path path = options.assets / file;
+                       if (options.assets.empty() || !fs::exists(path)) {
+                           sendError(res, 404, "the studio's page was not built (" + file + ")");
+                           return;
+                       }
+                       res.set_content(readFile(path), type);
+                       res.set_header("Cache-Control", "no-cache");
+                   }));
+    }
+
+    void routes() {
+        server.set_payload_max_length(options.limits.bodyBytes);
+        // Only this machine's own pages: a page of another site that points a name at
+        // 127.0.0.1 (DNS rebinding) names its own host.
+        server.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
+            const std::string host = req.get_header_value("Host");
+            const std::string p = ":" + std::to_string(port);
+            if (host == "127.0.0.1" + p || host == "localhost" + p)
+                return httplib::Server::HandlerResponse::Unhandled;
+            sendError(res, 403, "the studio answers only 127.0.0.1 and localhost");
+            return httplib::Server::HandlerResponse::Handled;
+        });
+
+        serveAsset("/", "index.html", "text/html; charset=utf-8");
+        // httplib compresses text/* and a bare application/javascript with brotli at its
+        // highest quality on every request (seconds for the megabyte bundle); with a
+        // charset the type is left alone.
+        serveAsset("/studio.js", "studio.js", "application/javascript; charset=utf-8");
+        serveAsset("/studio.css", "studio.css", "text/css; charset=utf-8");
+
+        server.Get("/api/info", guarded([this](const httplib::Request&, httplib::Response& res) {
+                       sendJson(res, {{"root", root.folder().string()},
+                                      {"onlyFile", root.onlyFile()},
+                                      {"formats", {"png", "svg", "pdf", "glb", "obj", "ply"}},
+                                      {"limits",
+                                       {{"bodyBytes", options.limits.bodyBytes},
+                                        {"segmentBudget", options.limits.segmentBudget},
+                                        {"meshSegmentBudget", options.limits.meshSegmentBudget},
+                                        {"maxSteps", options.limits.maxSteps}}}});
+                   }));
+
+        server.Get(
+            "/api/files", guarded([this](const httplib::Request&, httplib::Response& res) {
+                json files = json::array();
+                for (const ListedFile& f : root.list())
+                    files.push_back({{"path", f.path}, {"size", f.size}, {"mtime", f.mtime}});
+                sendJson(res, {{"files", files}});
+            }));
+
+        server.Get("/api/file",
+                   guarded([this](const httplib::Request& req, httplib::Response& res) {
+                       const fs::path path = root.resolve(req.get_param_value("path"), true);
+                       sendJson(res, {{"path", req.get_param_value("path")},
+                                      {"text", readFile(path)},
+                                      {"mtime", modificationTime(path)}});
+                   }));
+
+        server.Put(
+            "/api/file", guarded([this](const httplib::Request& req, httplib::Response& res) {
+                const fs::path path = root.resolve(req.get_param_value("path"), false);
+                writeStreamAtomically(
+                    path, [&](std::ostream& out) { out.write(req.body.data(), req.body.size()); },
+                    "model file");
+                sendJson(res, {{"path", req.get_param_value("path")},
+                               {"mtime", modificationTime(path)}});
+            }));
+
+        // Long poll: answers when the file's time differs from `since`, or after a while.
+        server.Get(
+            "/api/watch", guarded([this](const httplib::Request& req, httplib::Response& res) {
+                const fs::path path = root.resolve(req.get_param_value("path"), true);
+                const std::int64_t since =
+                    req.has_param("since") ? std::stoll(req.get_param_value("since")) : 0;
+                const auto until = std::chrono::steady_clock::now() +
+                                   std::chrono::milliseconds(options.watchMilliseconds);
+                std::int64_t now = modificationTime(path);
+                while (now == since && !stopping && std::chrono::steady_clock::now() < until) {
+                    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+                    now = modificationTime(path);
+                }
+                sendJson(res, {{"mtime", now}, {"changed", now != since}});
+            }));
+
+        server.Post("/api/parse",
+                    guarded([this](const httplib::Request& req, httplib::Response& res) {
+                        sendJson(res, parseReport(modelInput(parseBody(req))));
+                    }));
+
+        // Metadata and geometry in one answer: a 4-byte JSON length, the JSON, padding to
+        // a multiple of 4, then the line buffer (encodeLines) or a summarised PNG.
+        server.Post("/api/derive",
+                    guarded([this](const httplib::Request& req, httplib::Response& res) {
+                        const auto received = std::chrono::steady_clock::now();
+                        const json body = parseBody(req);
+                        const ModelInput input = modelInput(body);
+                        const std::string session = sessionOf(body);
+                        const CancellationToken token = sessions.begin(session);
+                        auto picture = std::make_shared<StudioPicture>(
+                            derivePicture(input, options.limits, token, scratch));
+                        const bool summarised = !picture->summaryPng.empty();
+                        const auto encodeStart = std::chrono::steady_clock::now();
+                        const std::string geometry =
+                            summarised ? picture->summaryPng : encodeLines(picture->scene);
+                        json stats = picture->stats;
+                        stats["encodeMs"] = std::chrono::duration<double, std::milli>(
+                                                std::chrono::steady_clock::now() - encodeStart)
+                                                .count();
+                        stats["serverMs"] = std::chrono::duration<double, std::milli>(
+                                                std::chrono::steady_clock::now() - received)
+                                                .count();
+                        json meta = {
+                            {"stats", stats},
+                            {"steps", picture->steps},
+                            {"string", picture->stringHead},
+                            {"notes", picture->notes},
+                            {"geometry", summarised ? "png" : "lines"},
+                            {"meshAvailable", !summarised && picture->scene.segments.size() <=
+                                                                 options.limits.meshSegmentBudget}};
+                        std::string out(4, '\0');
+                        const std::string metaText = meta.dump();
+                        const std::uint32_t length = static_cast<std::uint32_t>(metaText.size());
+                        std::memcpy(out.data(), &length, 4);
+                        out += metaText;
+                        out.append((4 - out.size() % 4) % 4, ' ');
+                        out += geometry;
+                        sessions.keep(session, inputKey(input), std::move(picture));
+                        res.set_content(std::move(out), "application/octet-stream");
+                    }));
+
+        // The 3D view's mesh, from the picture the last derive made (or derived again).
+        server.Post("/api/mesh",
+                    guarded([this](const httplib::Request& req, httplib::Response& res) {
+                        const json body = parseBody(req);
+                        const ModelInput input = modelInput(body);
+                        const std::string session = sessionOf(body);
+                        std::shared_ptr<const StudioPicture> picture =
+                            sessions.kept(session, inputKey(input));
+                        if (!picture) {
+                            const CancellationToken token = sessions.begin(session);
+                            picture = std::make_shared<StudioPicture>(
+                                derivePicture(input, options.limits, token, scratch));
+                        }
+                        if (!picture->summaryPng.empty() ||
+                            picture->scene.segments.size() > options.limits.meshSegmentBudget) {
+                            sendError(res, 413,
+                                      "over the mesh budget of " +
+                                          std::to_string(options.limits.meshSegmentBudget) +
+                                          " segments: the 3D view draws lines");
+                            return;
+                        }
+                        res.set_content(meshGlb(*picture, scratch), "model/gltf-binary");
+                    }));
+
+        server.Post(
+            "/api/export", guarded([this](const httplib::Request& req, httplib::Response& res) {
+                const json body = parseBody(req);
+                const ModelInput input = modelInput(body);
+                const std::string format = body.value("format", "");
+                const bool word = !format.empty() && format.size() < 8 &&
+                                  std::all_of(format.begin(), format.end(),
+                                              [](char c) { return c >= 'a' && c <= 'z'; });
+                if (!word || !fileFormatFor("x." + format))
+                    throw BadRequest("unknown export format '" + format + "'");
+                const CancellationToken token = sessions.begin(sessionOf(body) + "/export");
+                std::string bytes = exportFile(input, format, options.limits, token, scratch);
+                const std::string name = input.file.stem().string() + "." + format;
+                res.set_header("Content-Disposition", "attachment; filename=\"" + name + "\"");
+                res.set_content(std::move(bytes), contentTypeFor(format));
+            }));
+
+        server.Get("/api/thumbnail",
+                   guarded([this](const httplib::Request& req, httplib::Response& res) {
+                       const std::string rel = req.get_param_value("path");
+                       const fs::path path = root.resolve(rel, true);
+                       const std::int64_t mtime = modificationTime(path);
+                       std::lock_guard lock(thumbnailMutex);
+                       auto it = thumbnails.find(rel);
+                       if (it == thumbnails.end() || it->second.first != mtime) {
+                           StudioLimits limits = options.limits;
+                           limits.memoryLimit =
+                               std::min<std::size_t>(limits.memoryLimit, std::size_t(256) << 20);
+                           limits.deriveSeconds = 20;
+                           thumbnails[rel] = {mtime, thumbnailPng(path, 160, limits, scratch)};
+                           it = thumbnails.find(rel);
+                       }
+                       res.set_header("Cache-Control", "no-cache");
+                       res.set_content(it->second.second, "image/png");
+                   }));
+    }
+};
+
+StudioServer::StudioServer(StudioOptions options)
+    : impl_(std::make_unique<Impl>(std::move(options))) {}
+
+StudioServer::~StudioServer() {
+    stop();
+}
+
+int StudioServer::start(int port) {
+    Impl& s = *impl_;
+    if (port == 0) {
+        s.port = s.server.bind_to_any_port("127.0.0.1");
+        if (s.port <= 0)
+            throw Error(SourceLocation{"studio", 0, 0}, "cannot bind a port on 127.0.0.1");
+    } else {
+        if (!s.server.bind_to_port("127.0.0.1", port))
+            throw Error(SourceLocation{"studio", 0, 0},
+                        "cannot bind 127.0.0.1:" + std::to_string(port) + " (in use?)");
+        s.port = port;
+    }
+    s.thread = std::thread([&s] { s.server.listen_after_bind(); });
+    return s.port;
+}
+
+void StudioServer::wait() {
+    if (impl_->thread.joinable()) impl_->thread.join();
+}
+
+void StudioServer::stop() {
+    if (!impl_) return;
+    impl_->stopping = true;
+    impl_->server.stop();
+    if (impl_->thread.joinable()) impl_->thread.join();
+}
+
+}  // namespace graftal::studio

@@ -1,0 +1,343 @@
+// graftal studio's page: the editor, the views and the panels, kept in step with the
+// server. Every edit is parsed and derived at once (the server cancels the derivation it
+// replaces); the file is saved shortly after, atomically, and reloads when changed on disk.
+import { EditorView, basicSetup } from 'codemirror';
+import { setDiagnostics, lintGutter } from '@codemirror/lint';
+import * as api from './api.js';
+import { lsystemLanguage } from './lsystem_language.js';
+import { View2D } from './view2d.js';
+import { View3D } from './view3d.js';
+import { showFiles, markCurrent, refreshThumbnail } from './files_panel.js';
+import { showDefines, writeBackChanges } from './defines_panel.js';
+
+const $ = (id) => document.getElementById(id);
+
+const state = {
+  path: null, mtime: 0, savedText: '', steps: null, derivationLength: 0,
+  overrides: {}, defines: [], view: '2d', last: null, seq: 0, shown: 0, string: '',
+  saveTimer: 0, loading: false, fitNext: true,
+};
+// What the browser tests read: the number of pictures shown and the time from an edit
+// (or a slider move) to its picture.
+const studio = { state, pictures: 0, timings: [], errors: 0 };
+window.studio = studio;
+
+const view2d = new View2D($('view2d'));
+const view3d = new View3D($('view3d'));
+
+const editor = new EditorView({
+  doc: '',
+  extensions: [
+    basicSetup, lsystemLanguage, lintGutter(),
+    EditorView.updateListener.of((u) => { if (u.docChanged && !state.loading) edited(); }),
+  ],
+  parent: $('editor'),
+});
+studio.editor = editor;
+
+const text = () => editor.state.doc.toString();
+const modelBody = () => ({ text: text(), path: state.path, steps: state.steps, defines: state.overrides });
+
+function edited() {
+  scheduleSave();
+  refresh();
+}
+
+// ---- diagnostics -------------------------------------------------------------------
+
+function toEditorDiagnostic(d) {
+  const doc = editor.state.doc;
+  const lineNumber = Math.min(Math.max(d.line || 1, 1), doc.lines);
+  const line = doc.line(lineNumber);
+  const from = Math.min(line.from + Math.max((d.column || 1) - 1, 0), line.to);
+  let to = from;
+  if (d.endLine >= lineNumber && d.endLine <= doc.lines && d.endColumn > 0)
+    to = Math.min(doc.line(d.endLine).from + d.endColumn - 1, doc.length);
+  if (to <= from) to = Math.min(from + 1, line.to);
+  const severity = d.severity === 'note' ? 'info' : d.severity;
+  return { from, to: Math.max(to, from), severity, message: d.message };
+}
+
+function showDiagnostics(list) {
+  const shown = list.filter((d) => d.severity !== 'note' || d.line > 0);
+  editor.dispatch(setDiagnostics(editor.state, shown.map(toEditorDiagnostic)));
+  $('problems').replaceChildren(...shown.map((d) => {
+    const div = document.createElement('div');
+    div.className = 'problem';
+    div.dataset.line = d.line;
+    div.textContent = `${d.line}:${d.column}: ${d.severity}: ${d.message}`;
+    return div;
+  }));
+}
+
+// ---- parse and derive --------------------------------------------------------------
+
+function refresh() {
+  const seq = ++state.seq;
+  const started = performance.now();
+  const body = modelBody();
+  api.parse(body).then((report) => {
+    if (seq !== state.seq) return;
+    if (report.ok || report.diagnostics.length) showDiagnostics(report.diagnostics);
+    state.derivationLength = report.derivationLength;
+    updateStepSlider();
+    state.defines = report.defines;
+    showDefines(report.defines, state, { changed: refresh, writeBack });
+  }).catch(() => {});
+  return api.derive(body).then(async (result) => {
+    if (seq < state.shown) return;
+    state.shown = seq;
+    state.last = result;
+    const arrived = performance.now();
+    await showPicture(result);
+    studio.pictures += 1;
+    const done = performance.now();
+    studio.timings.push({
+      seq, ms: done - started, fetchMs: arrived - started, drawMs: done - arrived,
+      serverMs: result.meta.stats.serverMs, deriveMs: result.meta.stats.deriveMs, turtleMs: result.meta.stats.drawMs,
+      segments: result.meta.stats.segments,
+    });
+    $('views').classList.remove('stale');
+  }).catch((e) => {
+    if (e.cancelled || seq !== state.seq) return;
+    studio.errors += 1;
+    $('views').classList.add('stale');
+    $('note').textContent = e.message;
+    if (e.diagnostics?.length) showDiagnostics(e.diagnostics);
+  });
+}
+
+async function showPicture({ meta, lines, png }) {
+  $('note').textContent = meta.notes.join('; ');
+  state.string = meta.string;
+  showString();
+  showStats(meta);
+  const fit = state.fitNext;
+  state.fitNext = false;
+  if (png) {
+    const img = $('summary');
+    if (img.src) URL.revokeObjectURL(img.src);
+    img.src = URL.createObjectURL(png);
+    img.hidden = false;
+    $('view2d').hidden = true;
+    $('view3d').hidden = true;
+    return;
+  }
+  $('summary').hidden = true;
+  $('view2d').hidden = state.view !== '2d';
+  $('view3d').hidden = state.view !== '3d';
+  if (fit) view2d.autoFit = true;
+  view2d.show(lines);
+  if (state.view === '3d') await show3D(fit);
+}
+
+async function show3D(fit) {
+  const r = state.last;
+  if (!r || !r.lines) return;
+  if (r.meta.meshAvailable) {
+    try {
+      await view3d.showGlb(await api.mesh(modelBody()), fit);
+      return;
+    } catch (e) {
+      if (e.cancelled) return;
+    }
+  }
+  view3d.showLines(r.lines, fit);
+}
+
+function showStats(meta) {
+  const s = meta.stats;
+  const box = s.bbox ? s.bbox.min.map((v, i) => `${fmt(v)}…${fmt(s.bbox.max[i])}`).join(', ') : '—';
+  const rows = [
+    ['step', s.steps], ['modules', s.modules ?? '—'], ['segments', s.segments ?? '—'],
+    ['polygons', s.polygons ?? '—'], ['bbox', box], ['derive', `${fmt(s.deriveMs)} ms`],
+    ['turtle', s.drawMs !== undefined ? `${fmt(s.drawMs)} ms` : '—'],
+  ];
+  const table = document.createElement('table');
+  for (const [k, v] of rows) {
+    const tr = table.insertRow();
+    tr.insertCell().textContent = k;
+    const td = tr.insertCell();
+    td.textContent = v;
+    td.dataset.stat = k;
+  }
+  $('stats').replaceChildren(table);
+}
+
+const fmt = (v) => (Math.abs(v) >= 100 ? v.toFixed(0) : Number(v.toPrecision(3)).toString());
+
+function showString() {
+  const query = $('string-search').value;
+  const pre = $('string');
+  const s = state.string;
+  if (!query) {
+    pre.textContent = s;
+    $('string-count').textContent = `${s.length} characters shown`;
+    return;
+  }
+  const parts = s.split(query);
+  pre.replaceChildren();
+  parts.forEach((part, i) => {
+    pre.append(part);
+    if (i < parts.length - 1) {
+      const mark = document.createElement('mark');
+      mark.textContent = query;
+      pre.append(mark);
+    }
+  });
+  $('string-count').textContent = `${parts.length - 1} matches`;
+}
+$('string-search').addEventListener('input', showString);
+
+// ---- steps and growth --------------------------------------------------------------
+
+function updateStepSlider() {
+  const slider = $('step');
+  slider.max = Math.max(state.derivationLength, state.steps ?? 0);
+  slider.value = state.steps ?? state.derivationLength;
+  $('step-value').textContent = slider.value;
+}
+
+$('step').addEventListener('input', () => {
+  state.steps = Number($('step').value);
+  $('step-value').textContent = state.steps;
+  refresh();
+});
+
+let playing = false;
+$('play').addEventListener('click', async () => {
+  if (playing) { playing = false; return; }
+  playing = true;
+  const last = Math.max(state.derivationLength, 0);
+  for (let k = 0; k <= last && playing; ++k) {
+    state.steps = k;
+    updateStepSlider();
+    await refresh();
+    await new Promise((r) => setTimeout(r, 250));
+  }
+  playing = false;
+});
+
+// ---- #define write back ------------------------------------------------------------
+
+function writeBack() {
+  const changes = writeBackChanges(editor.state.doc, state.defines, state.overrides);
+  state.overrides = {};
+  if (changes.length) editor.dispatch({ changes });  // edited() saves and refreshes
+  else refresh();
+  saveNow();
+}
+
+// ---- files, saving and watching ----------------------------------------------------
+
+function scheduleSave() {
+  if (!state.path) return;
+  $('save-state').textContent = 'editing…';
+  clearTimeout(state.saveTimer);
+  state.saveTimer = setTimeout(saveNow, 500);
+}
+
+async function saveNow() {
+  clearTimeout(state.saveTimer);
+  if (!state.path) return;
+  const t = text();
+  if (t === state.savedText) { $('save-state').textContent = 'saved'; return; }
+  try {
+    const r = await api.writeFile(state.path, t);
+    state.savedText = t;
+    state.mtime = r.mtime;
+    $('save-state').textContent = 'saved';
+    refreshThumbnail(state.path, r.mtime);
+  } catch (e) {
+    $('save-state').textContent = 'not saved: ' + e.message;
+  }
+}
+
+function setText(t) {
+  state.loading = true;
+  editor.dispatch({ changes: { from: 0, to: editor.state.doc.length, insert: t } });
+  state.loading = false;
+}
+
+async function openFile(path) {
+  await saveNow();
+  const f = await api.readFile(path);
+  Object.assign(state, { path, mtime: f.mtime, savedText: f.text, steps: null, overrides: {}, fitNext: true });
+  view3d.fitted = false;
+  $('file-name').textContent = path;
+  $('save-state').textContent = 'saved';
+  history.replaceState(null, '', '#' + encodeURIComponent(path));
+  setText(f.text);
+  markCurrent(path);
+  watch(path);
+  return refresh();
+}
+studio.openFile = openFile;
+
+// Another editor's changes reload here, unless this page has unsaved edits.
+async function watch(path) {
+  while (state.path === path) {
+    let r;
+    try { r = await api.watch(path, state.mtime); } catch { await new Promise((res) => setTimeout(res, 1000)); continue; }
+    if (state.path !== path || !r.changed) continue;
+    state.mtime = r.mtime;
+    const f = await api.readFile(path);
+    if (f.text === text()) { state.savedText = f.text; continue; }
+    if (text() === state.savedText) {
+      state.savedText = f.text;
+      setText(f.text);
+      $('save-state').textContent = 'reloaded from disk';
+      refreshThumbnail(path, r.mtime);
+      refresh();
+    } else {
+      $('save-state').textContent = 'changed on disk (your edits kept)';
+    }
+  }
+}
+
+// ---- view tabs and exports ---------------------------------------------------------
+
+for (const button of document.querySelectorAll('#view-tabs [data-view]')) {
+  button.addEventListener('click', () => {
+    state.view = button.dataset.view;
+    for (const b of document.querySelectorAll('#view-tabs [data-view]')) b.classList.toggle('active', b === button);
+    if (state.last && !state.last.png) {
+      $('view2d').hidden = state.view !== '2d';
+      $('view3d').hidden = state.view !== '3d';
+      if (state.view === '3d') show3D(false); else view2d.draw();
+    }
+  });
+}
+$('fit').addEventListener('click', () => { view2d.resetView(); if (view3d.renderer) { view3d.fit(); view3d.render(); } });
+
+for (const button of document.querySelectorAll('#exports [data-format]')) {
+  button.addEventListener('click', async () => {
+    const format = button.dataset.format;
+    try {
+      const blob = await api.exportFile(modelBody(), format);
+      const a = document.createElement('a');
+      a.href = URL.createObjectURL(blob);
+      a.download = (state.path || 'untitled.l').split('/').pop().replace(/\.l$/, '') + '.' + format;
+      document.body.append(a);
+      a.click();
+      a.remove();
+      setTimeout(() => URL.revokeObjectURL(a.href), 10000);
+    } catch (e) {
+      $('note').textContent = `export ${format}: ${e.message}`;
+    }
+  });
+}
+
+window.addEventListener('beforeunload', () => { if (text() !== state.savedText) saveNow(); });
+
+// ---- start -------------------------------------------------------------------------
+
+async function start() {
+  const [meta, list] = await Promise.all([api.info(), api.listFiles()]);
+  showFiles(list.files, openFile);
+  const wanted = decodeURIComponent(location.hash.slice(1));
+  const first = list.files.find((f) => f.path === wanted) || list.files.find((f) => f.path === meta.onlyFile) || list.files[0];
+  if (first) await openFile(first.path);
+  document.body.dataset.ready = 'true';
+}
+start();

@@ -1,0 +1,236 @@
+// graftal studio in a real browser: Debian's chromium (/usr/bin/chromium) driven by
+// playwright-core, against `graftal studio` started on a copy of examples/. Run by ctest
+// (Studio.Browser) with GRAFTAL_EXE, GRAFTAL_STUDIO_NODE and GRAFTAL_SOURCE_DIR set; exits
+// 77 (skipped) when chromium or playwright-core is missing. Writes the measured times to
+// studio-timings.json and a screenshot to studio-screenshot.png in the working folder.
+import { spawn } from 'node:child_process';
+import { createRequire } from 'node:module';
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import assert from 'node:assert/strict';
+
+const exe = process.env.GRAFTAL_EXE;
+const nodeDir = process.env.GRAFTAL_STUDIO_NODE;
+const sourceDir = process.env.GRAFTAL_SOURCE_DIR;
+const chromiumPath = process.env.GRAFTAL_CHROMIUM || '/usr/bin/chromium';
+if (!fs.existsSync(chromiumPath) || !fs.existsSync(path.join(nodeDir, 'node_modules/playwright-core'))) {
+  console.log('skipped: needs ' + chromiumPath + ' and playwright-core in ' + nodeDir);
+  process.exit(77);
+}
+const { chromium } = createRequire(path.join(nodeDir, 'package.json'))('playwright-core');
+
+// The models: a copy of examples/ (the test writes to it) and two large dragon curves.
+const work = fs.mkdtempSync(path.join(os.tmpdir(), 'graftal-studio-browser-'));
+const root = path.join(work, 'examples');
+fs.cpSync(path.join(sourceDir, 'examples'), root, { recursive: true });
+const dragon = (n) => `/* dragon curve, 2^${n} segments */\nLsystem: 1\nderivation length: ${n}\nangle factor: 4\naxiom: Fl\nl --> l+rF+\nr --> -Fl-r\nendlsystem\n`;
+fs.writeFileSync(path.join(root, 'zz-dragon-1e5.l'), dragon(17));
+fs.writeFileSync(path.join(root, 'zz-dragon-1e6.l'), dragon(20));
+
+const server = spawn(exe, ['studio', root, '--no-open'], { stdio: ['ignore', 'pipe', 'inherit'] });
+process.on('exit', () => server.kill('SIGTERM'));
+const address = await new Promise((resolve, reject) => {
+  let out = '';
+  server.stdout.on('data', (d) => {
+    out += d;
+    const m = /http:\/\/127\.0\.0\.1:\d+\//.exec(out);
+    if (m) resolve(m[0]);
+  });
+  server.on('exit', (code) => reject(new Error('graftal studio exited with ' + code)));
+  setTimeout(() => reject(new Error('graftal studio printed no address')), 15000);
+});
+
+// playwright starts chromium with a fresh, empty profile of its own (--user-data-dir).
+let browser;
+const timings = {};
+let failed = false;
+try {
+  browser = await chromium.launch({
+  executablePath: chromiumPath,
+  headless: true,
+  args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
+    '--disable-background-networking', '--disable-component-update', '--disable-sync',
+    '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
+  });
+  const context = await browser.newContext({ viewport: { width: 1400, height: 860 }, acceptDownloads: true });
+  const page = await context.newPage();
+  page.on('pageerror', (e) => console.log('page error:', e.message));
+  await page.goto(address);
+  await page.waitForSelector('body[data-ready="true"]', { timeout: 30000 });
+  const files = await page.$$eval('#file-list .file', (rows) => rows.map((r) => r.dataset.path));
+  assert.ok(files.includes('honda-monopodial-tree.l') && files.length > 50, 'examples are listed');
+
+  // What a view shows: the count of non-white pixels and a hash of them.
+  const pixels = (selector) => page.evaluate((sel) => {
+    const source = document.querySelector(sel);
+    const c = document.createElement('canvas');
+    c.width = source.width; c.height = source.height;
+    const ctx = c.getContext('2d');
+    ctx.drawImage(source, 0, 0);
+    const d = ctx.getImageData(0, 0, c.width, c.height).data;
+    let ink = 0, hash = 0;
+    for (let i = 0; i < d.length; i += 4) {
+      if (d[i] < 245 || d[i + 1] < 245 || d[i + 2] < 245) { ink++; hash = (hash * 31 + i + d[i] + d[i + 1]) | 0; }
+    }
+    return { ink, hash };
+  }, selector);
+  const pictures = () => page.evaluate(() => window.studio.pictures);
+  const nextPicture = async (before) => page.waitForFunction((n) => window.studio.pictures > n, before, { timeout: 30000 });
+
+  console.log('- Pick an example');
+  // Pick an example: the 2D view draws it, its thumbnail loads.
+  let before = await pictures();
+  await page.click('#file-list .file[data-path="honda-monopodial-tree.l"]');
+  await nextPicture(before);
+  const first = await pixels('#view2d');
+  assert.ok(first.ink > 500, `the 2D view shows the tree (${first.ink} pixels)`);
+  await page.waitForFunction(() => [...document.querySelectorAll('#file-list img')].some((i) => i.naturalWidth > 0), null, { timeout: 60000 });
+
+  console.log('- The 3D view');
+  // The 3D view: three.js draws the mesh (WebGL on SwiftShader).
+  await page.click('#view-tabs [data-view="3d"]');
+  await page.waitForSelector('#view3d-canvas', { timeout: 30000 });
+  await page.waitForFunction(() => window.studio.state.view === '3d');
+  let ink3d = 0;
+  for (let i = 0; i < 50 && ink3d < 500; ++i) {
+    await page.waitForTimeout(200);
+    ink3d = (await pixels('#view3d-canvas')).ink;
+  }
+  assert.ok(ink3d > 500, `the 3D view shows the tree (${ink3d} pixels)`);
+  await page.screenshot({ path: 'studio-screenshot-3d.png' });
+  await page.click('#view-tabs [data-view="2d"]');
+
+  console.log('- An error typed');
+  // An error typed on a production's line: the marker is on that line; fixing it brings
+  // the picture back.
+  const productionLine = await page.evaluate(() => {
+    const doc = window.studio.editor.state.doc;
+    for (let n = 1; n <= doc.lines; ++n) if (doc.line(n).text.startsWith('B(l,w)')) return n;
+    return 0;
+  });
+  assert.ok(productionLine > 0);
+  await page.evaluate((n) => {
+    const view = window.studio.editor;
+    const line = view.state.doc.line(n);
+    view.focus();
+    view.dispatch({ selection: { anchor: line.from + line.text.indexOf('F(l)') + 4 } });
+  }, productionLine);
+  await page.keyboard.type(')');
+  await page.waitForSelector('.cm-lintRange-error', { timeout: 10000 });
+  const markedLine = await page.evaluate(() => {
+    const view = window.studio.editor;
+    return view.state.doc.lineAt(view.posAtDOM(document.querySelector('.cm-lintRange-error'))).number;
+  });
+  assert.equal(markedLine, productionLine, 'the error marker is on the edited line');
+  await page.waitForSelector(`#problems .problem[data-line="${productionLine}"]`);
+  await page.waitForSelector('#views.stale');
+  before = await pictures();
+  await page.keyboard.press('Backspace');
+  await nextPicture(before);
+  await page.waitForSelector('.cm-lintRange-error', { state: 'detached' });
+  assert.equal((await pixels('#view2d')).hash, first.hash, 'the fixed model draws the same picture');
+
+  console.log('- A #define slider');
+  // A #define slider changes the picture, not the file, until "write back".
+  const file = path.join(root, 'honda-monopodial-tree.l');
+  await page.waitForFunction(() => window.studio.state.savedText === window.studio.editor.state.doc.toString());
+  const onDisk = fs.readFileSync(file, 'utf8');
+  before = await pictures();
+  await page.$eval('.define[data-name="A2"] input', (s) => { s.value = 80; s.dispatchEvent(new Event('input')); });
+  await nextPicture(before);
+  const moved = await pixels('#view2d');
+  assert.notEqual(moved.hash, first.hash, 'the slider changes the picture');
+  await page.waitForTimeout(1200);
+  assert.equal(fs.readFileSync(file, 'utf8'), onDisk, 'the file is unchanged before write back');
+  await page.click('#write-back');
+  for (let i = 0; i < 50 && !fs.readFileSync(file, 'utf8').includes('#define A2 80\n'); ++i) await page.waitForTimeout(100);
+  assert.ok(fs.readFileSync(file, 'utf8').includes('#define A2 80\n'), 'write back puts the value into the file');
+
+  console.log('- The step slider');
+  // The step slider changes the picture.
+  before = await pictures();
+  await page.$eval('#step', (s) => { s.value = 3; s.dispatchEvent(new Event('input')); });
+  await nextPicture(before);
+  const step3 = await pixels('#view2d');
+  assert.ok(step3.ink > 0 && step3.ink < moved.ink, 'step 3 draws less than step 10');
+
+  console.log('- The string search and play');
+  await page.fill('#string-search', 'F(');
+  const matches = await page.textContent('#string-count');
+  const expected = await page.evaluate(() => window.studio.state.string.split('F(').length - 1);
+  assert.ok(expected > 0 && matches === `${expected} matches`, `search counts ${matches}`);
+  assert.equal(await page.$$eval('#string mark', (m) => m.length), expected);
+  await page.fill('#string-search', '');
+  before = await pictures();
+  await page.click('#play');
+  await page.waitForFunction(() => document.getElementById('step').value === document.getElementById('step').max &&
+    window.studio.state.steps === Number(document.getElementById('step').max), null, { timeout: 60000 });
+  await page.waitForFunction((n) => window.studio.pictures >= n + 11, before, { timeout: 60000 });
+  console.log('- A change made on disk');
+  // A change made on disk by another editor reloads.
+  fs.writeFileSync(file, fs.readFileSync(file, 'utf8').replace('#define A2 80', '#define A2 30'));
+  await page.waitForFunction(() => window.studio.editor.state.doc.toString().includes('#define A2 30'), null, { timeout: 30000 });
+
+  console.log('- Exports download');
+  // Exports download files that read back.
+  for (const [format, check] of [
+    ['png', (b) => b.subarray(1, 4).toString() === 'PNG' && b.readUInt32BE(16) === 800],
+    ['svg', (b) => b.toString().includes('<svg')],
+    ['glb', (b) => b.subarray(0, 4).toString() === 'glTF' && JSON.parse(b.subarray(20, 20 + b.readUInt32LE(12)).toString()).meshes.length > 0],
+  ]) {
+    const [download] = await Promise.all([page.waitForEvent('download'), page.click(`#exports [data-format="${format}"]`)]);
+    const saved = path.join(work, 'export.' + format);
+    await download.saveAs(saved);
+    assert.equal(download.suggestedFilename(), 'honda-monopodial-tree.' + format);
+    assert.ok(check(fs.readFileSync(saved)), format + ' export reads back');
+  }
+
+  // The picture of docs/studio.md: the tree in 3D, thumbnails loaded.
+  before = await pictures();
+  await page.$eval('#step', (s) => { s.value = 10; s.dispatchEvent(new Event('input')); });
+  await nextPicture(before);
+  await page.click('#view-tabs [data-view="3d"]');
+  await page.waitForTimeout(1500);
+  await page.screenshot({ path: 'studio-screenshot.png' });
+  await page.click('#view-tabs [data-view="2d"]');
+
+  console.log('- Speed');
+  // Speed: keystroke to picture at ~10^5 segments, first picture at ~10^6.
+  before = await pictures();
+  await page.click('#file-list .file[data-path="zz-dragon-1e5.l"]');
+  await nextPicture(before);
+  const keystrokes = [];
+  for (let i = 0; i < 7; ++i) {
+    await page.evaluate(() => {
+      const view = window.studio.editor;
+      view.focus();
+      view.dispatch({ selection: { anchor: view.state.doc.line(1).to - 2 } });
+    });
+    before = await pictures();
+    const t0 = Date.now();
+    await page.keyboard.type(i % 2 ? 'x' : 'y');
+    await nextPicture(before);
+    keystrokes.push({ wall: Date.now() - t0, ...(await page.evaluate(() => window.studio.timings.at(-1))) });
+  }
+  const segments = await page.evaluate(() => window.studio.timings.at(-1).segments);
+  keystrokes.sort((a, b) => a.ms - b.ms);
+  timings.keystroke = { segments, medianMs: keystrokes[3].ms, medianWallMs: keystrokes.map((k) => k.wall).sort((a, b) => a - b)[3], all: keystrokes };
+  before = await pictures();
+  const t1 = Date.now();
+  await page.click('#file-list .file[data-path="zz-dragon-1e6.l"]');
+  await nextPicture(before);
+  timings.firstPicture = { wallMs: Date.now() - t1, ...(await page.evaluate(() => window.studio.timings.at(-1))) };
+  assert.ok((await pixels('#view2d')).ink > 1000, 'the million-segment dragon is drawn');
+  console.log(JSON.stringify(timings));
+  fs.writeFileSync('studio-timings.json', JSON.stringify(timings, null, 2));
+  console.log('Studio.Browser: every check passed');
+} catch (e) {
+  failed = true;
+  console.error(e);
+} finally {
+  await browser?.close();
+  server.kill('SIGTERM');
+  fs.rmSync(work, { recursive: true, force: true });
+}
+process.exit(failed ? 1 : 0);
