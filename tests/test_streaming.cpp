@@ -5,6 +5,7 @@
 
 #include "graftal/streamed_interpretation.hpp"
 #include "graftal/streamed_picture.hpp"
+#include "graftal/pipeline.hpp"
 #include "graftal/streaming.hpp"
 #include "process.hpp"
 #include "test_helpers.hpp"
@@ -122,4 +123,30 @@ TEST(Streaming, MemoryLimitRefusesAndStreamSucceeds) {
     EXPECT_EQ(r.status, 0) << r.err;
     EXPECT_TRUE(r.err.empty()) << r.err;
     EXPECT_NE(r.out.find("\"segments\": 8388608"), std::string::npos) << r.out;
+}
+
+TEST(Streaming, AKochCurveWithManyStrokesPerPixelIsDrawnFromItsSummaries) {
+    // fig2.5e at n = 9 has 7.8 million segments: over four per pixel of an 800x800 picture.
+    // Held, derived and stroked one by one it took seconds and 700 MB; from its summaries
+    // the time follows the image.
+    const Model koch =
+        loadExample(std::filesystem::path(GRAFTAL_EXAMPLES_DIR) / "fig2.5e-koch-curve.l");
+    RenderOptions picture;  // 800x800
+    const std::size_t limit = std::size_t(2) << 30;
+    EXPECT_TRUE(streamedPictureIsSummarised(koch, 9, limit, picture));
+    EXPECT_FALSE(streamedPictureIsSummarised(koch, 7, limit, picture)) << "312,500 segments";
+    RenderOptions thumbnail;
+    thumbnail.width = thumbnail.height = 100;
+    EXPECT_TRUE(streamedPictureIsSummarised(koch, 7, limit, thumbnail)) << "31 per pixel";
+
+    graftal::testing::TempDir t;
+    RenderRequest request;
+    request.steps = 9;
+    request.output = t.path() / "koch.png";
+    RenderResult r = render(koch, request);
+    EXPECT_EQ(r.route, RenderRoute::StreamedPicture);
+    EXPECT_TRUE(r.notes.empty()) << "the string fits; nothing to say";
+    EXPECT_EQ(graftal::testing::readFile(request.output).substr(1, 3), "PNG");
+    request.steps = 6;
+    EXPECT_EQ(render(koch, request).route, RenderRoute::LineArt);
 }

@@ -156,8 +156,15 @@ RenderResult render(const Model& model, const RenderRequest& request) {
     {
         // A 2D PNG can be drawn while the derivation streams; everything else needs the scene.
         bool png2D = *format == FileFormat::Png;
-        bool pixelBound = png2D && streamedPictureIsSummarised(model, steps, request.memoryLimit);
-        if (shouldStream(model, steps, request, png2D, true, pixelBound, result.notes)) {
+        bool pixelBound = png2D && streamedPictureIsSummarised(model, steps, request.memoryLimit,
+                                                               request.picture);
+        // A picture with many strokes per pixel is drawn from its subtree summaries even when
+        // its string would fit: its time then grows with the image, not with the string.
+        // (The streamed picture has neither colour maps nor splines.)
+        const bool plainLines = model.view.colorMap.empty() &&
+                                request.spline.value_or(model.view.splineSubdivisions) <= 0;
+        if ((pixelBound && plainLines) ||
+            shouldStream(model, steps, request, png2D, true, pixelBound, result.notes)) {
             RenderOptions render = request.picture;
             double fill = std::clamp(model.view.scaleFactor / 100.0, 0.01, 1.0);
             render.margin = 0.5 - (0.5 - render.margin) * fill;
