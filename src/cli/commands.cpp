@@ -58,6 +58,44 @@ void endProgressLine() {
     progressShown = false;
 }
 
+std::string remedyAsFlag(Remedy r) {
+    switch (r) {
+        case Remedy::LowerSteps:
+            return "lower -n";
+        case Remedy::RaiseMemoryLimit:
+            return "raise --memory-limit";
+        case Remedy::Stream:
+            return "use --stream";
+        case Remedy::RaiseStreamLimit:
+            return "raise --stream-limit";
+    }
+    return {};
+}
+
+std::string settingAsFlag(const std::string& field) {
+    static const std::map<std::string, std::string> flags = {{"viewpoint", "--viewpoint"},
+                                                             {"target", "--target"},
+                                                             {"up", "--up"},
+                                                             {"light", "--light"},
+                                                             {"fieldOfView", "--fov"},
+                                                             {"samplesPerPixel", "--spp"},
+                                                             {"tubeSides", "--tube-sides"},
+                                                             {"lineWidth", "--line-width"},
+                                                             {"lineColor", "--color"},
+                                                             {"margin", "--margin"},
+                                                             {"steps", "-n"},
+                                                             {"memoryLimit", "--memory-limit"},
+                                                             {"streamLimit", "--stream-limit"},
+                                                             {"view", "--view"},
+                                                             {"derivationDiagram", "--derivation"}};
+    auto it = flags.find(field);
+    return it == flags.end() ? field : it->second;
+}
+
+std::string describe(const Diagnostic& d) {
+    return d.toString(remedyAsFlag, settingAsFlag);
+}
+
 void note(const InputOptions& in, const std::string& message) {
     if (!in.quiet) std::cerr << "graftal: note: " << message << '\n';
 }
@@ -104,7 +142,10 @@ DeriveRequest deriveRequest(const InputOptions& in) {
     }
     r.notify = [&in](const Diagnostic& d) {
         endProgressLine();
-        note(in, d.message);
+        // Notes and warnings about the run, not about a place in the file: "graftal: note:".
+        Diagnostic run = d;
+        run.location = SourceLocation{"graftal", 0, 0};
+        if (!in.quiet) std::cerr << describe(run) << '\n';
     };
     return r;
 }

@@ -26,7 +26,7 @@ struct InputOptions {
     unsigned threads = 0;
     bool stream = false;  // --stream: expand depth-first, never hold the string
     bool quiet = false;   // --quiet: no notes or warnings on stderr
-    std::uint64_t streamLimit = 100'000'000'000ull;  // --stream-limit: largest streamed string
+    std::uint64_t streamLimit = 100'000'000'000ull;  // --stream-limit: most modules expanded
 };
 
 struct RenderCommandOptions {
@@ -69,6 +69,10 @@ DerivationOptions derivationOptions(const InputOptions& in, const Model& model);
 bool chooseStreaming(const Loaded& l, const InputOptions& in, bool canStream,
                      bool countGeometry = false, bool pixelBound = false);
 void note(const InputOptions& in, const std::string& message);
+// The library's remedies in the command's terms: "lower -n", "raise --memory-limit", ...
+std::string remedyAsFlag(Remedy r);
+// A diagnostic as printed on stderr, its remedies worded as flags.
+std::string describe(const Diagnostic& d);
 void endProgressLine();
 
 // "2G", "512M", "1000000" -> bytes; throws Error on a malformed size.

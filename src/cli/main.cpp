@@ -38,7 +38,8 @@ void addInputOptions(CLI::App& cmd, graftal::cli::InputOptions& in, std::string&
                  "(L-systems without context; chosen by itself when the string would not fit)");
     cmd.add_flag("-q,--quiet", in.quiet, "no notes or warnings on stderr");
     cmd.add_option("--stream-limit", in.streamLimit,
-                   "largest string (modules) streamed when it does not fit in memory (1e11)");
+                   "most modules a streamed run expands one by one (1e11); a picture drawn "
+                   "from subtree summaries expands a few per pixel");
 }
 
 // What an option's value must be, in the words of its message.
@@ -198,7 +199,7 @@ int main(int argc, char** argv) {
         if (!color.empty()) out.render.lineColor = graftal::cli::parseColor(color);
         return graftal::cli::runRender(in, out);
     } catch (const graftal::Error& e) {
-        for (const auto& d : e.diagnostics()) std::cerr << d.toString() << '\n';
+        for (const auto& d : e.diagnostics()) std::cerr << graftal::cli::describe(d) << '\n';
         return 1;
     } catch (const std::bad_alloc&) {
         std::cerr << "graftal: error: out of memory (lower -n or --memory-limit)\n";

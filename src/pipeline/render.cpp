@@ -127,14 +127,21 @@ void addNote(RenderResult& result, const RenderRequest& request, const Model& mo
 FileFormat checkRenderRequest(const RenderRequest& request) {
     const std::string output = request.output.string();
     const std::optional<FileFormat> format = fileFormatFor(output);
-    if (!format)
-        throw requestError("-o " + output + ": unknown format (use " + extensionList() + ")");
+    if (!format) throw requestError(output + ": unknown format (use " + extensionList() + ")");
     const bool picture = fileFormatInfo(*format).kind == FormatKind::Picture;
+    // Messages name the request's fields; the command names them as its flags.
+    auto misfit = [](std::string message, std::string field) {
+        Diagnostic d{Severity::Error, SourceLocation{"graftal", 0, 0}, std::move(message)};
+        d.fields = {std::move(field)};
+        return Error(std::move(d));
+    };
     if (request.view && !picture)
-        throw requestError("--view draws 2D line art; it applies to " +
-                           extensionList(FormatKind::Picture, ", ", " and ") + ", not 3D files");
+        throw misfit("a view direction draws 2D line art; it applies to " +
+                         extensionList(FormatKind::Picture, ", ", " and ") + ", not 3D files",
+                     "view");
     if (request.derivationDiagram && !picture)
-        throw requestError("--derivation draws a picture; use .svg, .png or .pdf");
+        throw misfit("a derivation diagram is a picture; use .svg, .png or .pdf",
+                     "derivationDiagram");
     return *format;
 }
 
