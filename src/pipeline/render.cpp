@@ -122,6 +122,51 @@ void addNote(RenderResult& result, const RenderRequest& request, const Model& mo
     result.notes.push_back(std::move(d));
 }
 
+// The camera settings a request gives: they apply to ray-traced pictures only.
+std::vector<std::string> cameraSettingsGiven(const RenderRequest& request) {
+    const RenderRequest defaults;
+    std::vector<std::string> given;
+    if (request.viewpoint) given.push_back("viewpoint");
+    if (request.target) given.push_back("target");
+    if (request.up) given.push_back("up");
+    if (request.light) given.push_back("light");
+    if (request.fieldOfView) given.push_back("fieldOfView");
+    if (request.samplesPerPixel != defaults.samplesPerPixel) given.push_back("samplesPerPixel");
+    return given;
+}
+
+// The line art settings a request gives: a ray-traced picture or a 3D file has no lines.
+std::vector<std::string> lineArtSettingsGiven(const RenderRequest& request) {
+    const RenderOptions defaults;
+    std::vector<std::string> given;
+    if (request.picture.lineWidth != defaults.lineWidth) given.push_back("lineWidth");
+    if (request.picture.lineColor) given.push_back("lineColor");
+    if (request.picture.margin != defaults.margin) given.push_back("margin");
+    return given;
+}
+
+// Settings the route taken does not use are said, not silently dropped.
+void warnIgnored(RenderResult& result, const RenderRequest& request, const Model& model,
+                 std::string message, std::vector<std::string> fields) {
+    if (fields.empty()) return;
+    Diagnostic d{Severity::Warning, SourceLocation{model.lsystem.file, 0, 0}, std::move(message)};
+    d.fields = std::move(fields);
+    if (request.notify) request.notify(d);
+    result.notes.push_back(std::move(d));
+}
+
+// Line art (2D scenes, 3D ones seen from a view, streamed pictures and derivations): no
+// camera, no tubes.
+void warnLineArtIgnores(RenderResult& result, const RenderRequest& request, const Model& model,
+                        bool scene3D) {
+    std::vector<std::string> fields = cameraSettingsGiven(request);
+    if (request.tubeSides != RenderRequest{}.tubeSides) fields.push_back("tubeSides");
+    warnIgnored(result, request, model,
+                scene3D ? "the 3D scene is drawn as 2D line art; its 3D settings are ignored"
+                        : "the scene is 2D and drawn as line art; 3D settings are ignored",
+                std::move(fields));
+}
+
 }  // namespace
 
 FileFormat checkRenderRequest(const RenderRequest& request) {
@@ -155,6 +200,7 @@ RenderResult render(const Model& model, const RenderRequest& request) {
     const int steps = result.steps;
     if (request.derivationDiagram) {
         request.cancel.check();
+        warnLineArtIgnores(result, request, model, false);
         renderDerivation(model, steps, request);
         result.route = RenderRoute::DerivationDiagram;
         return result;
@@ -172,6 +218,7 @@ RenderResult render(const Model& model, const RenderRequest& request) {
                                 request.spline.value_or(model.view.splineSubdivisions) <= 0;
         if ((pixelBound && plainLines) ||
             shouldStream(model, steps, request, png2D, true, pixelBound, result.notes)) {
+            warnLineArtIgnores(result, request, model, false);
             RenderOptions render = request.picture;
             double fill = std::clamp(model.view.scaleFactor / 100.0, 0.01, 1.0);
             render.margin = 0.5 - (0.5 - render.margin) * fill;
@@ -195,6 +242,7 @@ RenderResult render(const Model& model, const RenderRequest& request) {
         // No turtle meaning (Anabaena's cells, the Fibonacci words): the derivation is
         // the picture the book draws for such systems.
         addNote(result, request, model, "the string draws nothing; drawing its derivation instead");
+        warnLineArtIgnores(result, request, model, false);
         renderDerivation(model, steps, request);
         result.route = RenderRoute::DerivationDiagram;
         return result;
@@ -205,6 +253,7 @@ RenderResult render(const Model& model, const RenderRequest& request) {
     if (picture && !(threeD && *format == FileFormat::Png)) {
         // Line art: 2D scenes as they are, 3D scenes seen from the front unless told.
         // Discs and spheres are drawn as their projected outlines.
+        warnLineArtIgnores(result, request, model, scene.is3D);
         if (scene.is3D || !scene.discs.empty() || !scene.spheres.empty())
             scene = projectScene(scene, request.view.value_or(ViewDirection::Front));
         writeImage(scene, lineArtOptions(model, request), output);
@@ -212,6 +261,14 @@ RenderResult render(const Model& model, const RenderRequest& request) {
         return result;
     }
 
+    warnIgnored(result, request, model,
+                picture ? "the 3D scene is ray traced, without lines; line settings are ignored"
+                        : "a 3D file holds no lines; line settings are ignored",
+                lineArtSettingsGiven(request));
+    if (!picture)
+        warnIgnored(result, request, model,
+                    "a 3D file holds no camera or light; these settings are ignored",
+                    cameraSettingsGiven(request));
     // Uncoloured 3D plants are bark brown, not line art's ink, so their shading shows.
     if (model.view.colorMap.empty()) scene.palette = defaultPalette3D();
     SurfaceLibrary surfaces = surfacesFor(model.view, folder);
