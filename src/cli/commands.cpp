@@ -245,48 +245,6 @@ Rgb parseColor(const std::string& text) {
 
 namespace {
 
-class PrintingSink : public ModuleSink {
-  public:
-    explicit PrintingSink(const SymbolTable& t) : table_(t) { buffer_.reserve(1 << 16); }
-    ~PrintingSink() override { flush(); }
-    void module(Symbol s, std::span<const double> params) override {
-        appendModuleText(buffer_, table_, s, params);
-        if (buffer_.size() > (1 << 16) - 512) flush();
-    }
-    void flush() {
-        std::cout.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
-        buffer_.clear();
-    }
-
-  private:
-    const SymbolTable& table_;
-    std::string buffer_;
-};
-
-}  // namespace
-
-int runDerive(const InputOptions& in, bool homomorphism) {
-    Loaded l = loadInput(in);
-    if (chooseStreaming(l, in, !homomorphism)) {
-        {
-            PrintingSink out(l.model.lsystem.symbols);
-            streamDerivation(l.model.lsystem, l.steps, out, derivationOptions(in, l.model));
-        }
-        std::cout << '\n';
-        std::cout.flush();
-        return std::cout ? 0 : 1;
-    }
-    Derived d = deriveLoaded(std::move(l), in);
-    if (homomorphism)
-        d.modules = applyHomomorphism(d.model.lsystem, d.modules, derivationOptions(in, d.model));
-    d.modules.print(std::cout, d.model.lsystem.symbols);
-    std::cout << '\n';
-    std::cout.flush();
-    return std::cout ? 0 : 1;
-}
-
-namespace {
-
 // Exact counts as JSON numbers while a double holds them exactly, as decimal strings after.
 nlohmann::ordered_json countJson(const BigCount& c) {
     auto v = c.toUint64();

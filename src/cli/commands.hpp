@@ -42,7 +42,8 @@ struct RenderCommandOptions {
     bool derivation = false;  // --derivation: draw the derivation steps, not the turtle's picture
 };
 
-int runDerive(const InputOptions& in, bool homomorphism);
+enum class DeriveFormat { Text, Json };
+int runDerive(const InputOptions& in, bool homomorphism, DeriveFormat format);
 int runStats(const InputOptions& in, bool geometry, bool predict);
 int runRender(const InputOptions& in, const RenderCommandOptions& out);
 

@@ -130,6 +130,12 @@ int main(int argc, char** argv) {
     auto* derive = app.add_subcommand("derive", "print the derived module string");
     addInputOptions(*derive, in, memoryLimit);
     derive->add_flag("--homo", homomorphism, "print the string after the homomorphism");
+    std::string deriveFormat = "text";
+    derive
+        ->add_option("--format", deriveFormat,
+                     "text (as the L-system file writes modules) or json (one object per "
+                     "module with its parameters; docs/cli.md)")
+        ->check(CLI::IsMember({"text", "json"}));
 
     auto* stats = app.add_subcommand("stats", "print counts and bounds as JSON");
     addInputOptions(*stats, in, memoryLimit);
@@ -187,7 +193,11 @@ int main(int argc, char** argv) {
 
     try {
         if (!memoryLimit.empty()) in.memoryLimit = graftal::cli::parseByteSize(memoryLimit);
-        if (*derive) return graftal::cli::runDerive(in, homomorphism);
+        if (*derive)
+            return graftal::cli::runDerive(in, homomorphism,
+                                           deriveFormat == "json"
+                                               ? graftal::cli::DeriveFormat::Json
+                                               : graftal::cli::DeriveFormat::Text);
         if (*stats) return graftal::cli::runStats(in, !noGeometry, predict);
         if (!size.empty()) graftal::cli::parseImageSize(size, out.render.width, out.render.height);
         if (!background.empty()) out.render.background = graftal::cli::parseColor(background);
