@@ -19,6 +19,7 @@
 #include "graftal/streamed_interpretation.hpp"
 #include "graftal/streaming.hpp"
 #include "graftal/turtle.hpp"
+#include "standard_streams.hpp"
 
 namespace graftal::cli {
 
@@ -100,6 +101,10 @@ void note(const InputOptions& in, const std::string& message) {
     if (!in.quiet) std::cerr << "graftal: note: " << message << '\n';
 }
 
+std::string fileName(const InputOptions& in) {
+    return in.file == "-" ? std::string(kStdinName) : in.file;
+}
+
 Loaded loadInput(const InputOptions& in) {
     if (in.steps && *in.steps < 0)
         throw usageError("-n " + std::to_string(*in.steps) +
@@ -107,7 +112,16 @@ Loaded loadInput(const InputOptions& in) {
     ParseOptions po;
     po.defines = in.defines;
     po.viewFile = in.viewFile;
-    ParseResult parsed = loadModel(in.file, po);
+    std::optional<ScratchFile> input;
+    std::filesystem::path path = in.file;
+    if (in.file == "-") {
+        // Standard input, kept in a scratch file; its diagnostics name <stdin>.
+        input.emplace("stdin.l");
+        saveStandardInput(*input);
+        path = input->path();
+        po.fileName = kStdinName;
+    }
+    ParseResult parsed = loadModel(path, po);
     if (!parsed.ok()) throw Error(parsed.errors());
     if (!in.quiet) printWarnings(parsed);
     Loaded l{std::move(parsed.model), 0};
@@ -270,7 +284,7 @@ int printPrediction(const InputOptions& in, const Loaded& l) {
         throw Error(SourceLocation{l.model.lsystem.file, 0, 0},
                     "cannot predict the growth: " + g.reason);
     nlohmann::ordered_json j;
-    j["file"] = in.file;
+    j["file"] = fileName(in);
     j["steps"] = l.steps;
     j["prediction"] = g.exact ? "exact" : "expected";
     if (g.exact) {
@@ -298,7 +312,7 @@ int runStats(const InputOptions& in, bool geometry, bool predict) {
     Loaded l = loadInput(in);
     if (predict) return printPrediction(in, l);
     nlohmann::ordered_json j;
-    j["file"] = in.file;
+    j["file"] = fileName(in);
     j["steps"] = l.steps;
     if (chooseStreaming(l, in, true)) {
         StreamedMeasure m =

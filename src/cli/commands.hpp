@@ -30,7 +30,8 @@ struct InputOptions {
 };
 
 struct RenderCommandOptions {
-    std::string output;
+    std::string output;        // "-": standard output
+    std::string outputFormat;  // --format, for -o - (default svg)
     RenderOptions render;
     std::string view;  // --view front|back|side|top: 3D as 2D line art
     std::optional<Vec3> viewpoint, target, up, light;
@@ -54,6 +55,8 @@ struct Loaded {
     int steps = 0;
 };
 Loaded loadInput(const InputOptions& in);
+// The input's name in output: the file, or <stdin> for "-".
+std::string fileName(const InputOptions& in);
 
 // What derive, stats and render share: the parsed file, its derived string, the step count.
 struct Derived {

@@ -108,7 +108,7 @@ int runDerive(const InputOptions& in, bool homomorphism, DeriveFormat format) {
     // The sinks refer to the symbol table: keep it alive after the model moves on.
     const SymbolTable symbols = l.model.lsystem.symbols;
     if (format == DeriveFormat::Json) {
-        JsonSink sink(symbols, in.file, l.steps);
+        JsonSink sink(symbols, fileName(in), l.steps);
         return writeDerivation(std::move(l), in, homomorphism, sink);
     }
     TextSink sink(symbols);

@@ -10,7 +10,9 @@
 namespace {
 
 void addInputOptions(CLI::App& cmd, graftal::cli::InputOptions& in, std::string& memoryLimit) {
-    cmd.add_option("file", in.file, "L-system file (.l), or a model folder with one .l and .v")
+    cmd.add_option("file", in.file,
+                   "L-system file (.l), a model folder with one .l and .v, or - for standard "
+                   "input")
         ->required();
     cmd.add_option("view", in.viewFile, "cpfg view file (.v); its settings win over the .l's");
     cmd.add_option("-n,--steps", in.steps, "derivation length (overrides the file)");
@@ -151,8 +153,12 @@ int main(int argc, char** argv) {
     addInputOptions(*render, in, memoryLimit);
     render
         ->add_option("-o,--output", out.output,
-                     "output file: " + graftal::extensionList(std::nullopt, " ", " "))
+                     "output file: " + graftal::extensionList(std::nullopt, " ", " ") +
+                         "; - for standard output")
         ->required();
+    render->add_option("--format", out.outputFormat,
+                       "format written by -o -: svg (default) or obj; png pdf ply glb only "
+                       "into a pipe or file");
     render->add_option("--size", size, "picture size WxH in pixels (default 800x800)");
     render->add_option("--line-width", out.render.lineWidth, "line width in pixels (0: automatic)")
         ->check(CLI::Range(0.0, 1000.0));
