@@ -1,4 +1,5 @@
-// What the command says while it works: warnings for settings a picture does not use.
+// What the command says while it works: warnings for settings a picture does not use, and
+// progress on a terminal.
 #include <gtest/gtest.h>
 
 #include "graftal/graftal.hpp"
@@ -17,6 +18,16 @@ const char* kKoch =
 const char* kTree3D =
     "Lsystem: 1\nangle increment: 30\nderivation length: 3\naxiom: A\n"
     "A --> F[&A]/[&A]/[&A]\nendlsystem\n";
+
+// The terminal output of `command` run under a pseudo-terminal (script(1)).
+std::string underATerminal(const std::string& command, const TempDir& t) {
+    const auto log = t.path() / "typescript";
+    const std::string cmd =
+        "script -qfec \"" + command + "\" " + log.string() + " > /dev/null 2>&1 < /dev/null";
+    const int raw = std::system(cmd.c_str());
+    EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 0) << command;
+    return readFile(log);
+}
 
 }  // namespace
 
@@ -64,4 +75,23 @@ TEST(CliFeedback, SettingsTheSceneDoesNotUseAreWarned) {
     EXPECT_EQ(result.notes[0].severity, graftal::Severity::Warning);
     EXPECT_EQ(result.notes[0].fields, std::vector<std::string>{"fieldOfView"});
     EXPECT_NE(result.notes[0].toString().find("ignored: fieldOfView"), std::string::npos);
+}
+
+TEST(CliFeedback, ALongRunShowsItsProgressOnATerminal) {
+    TempDir t;
+    // 124 million modules, streamed and counted: a second or two.
+    const std::string island = std::string(GRAFTAL_EXAMPLES_DIR) +
+                               "/fig2.2-quadratic-koch-island.l -n 8 --stream --no-geometry";
+    const std::string exe = GRAFTAL_EXE;
+    std::string said = underATerminal(exe + " stats " + island + " > /dev/null", t);
+    EXPECT_NE(said.find("\rgraftal: "), std::string::npos) << said;
+    EXPECT_NE(said.find("% (step 8 of 8)"), std::string::npos) << said;
+    EXPECT_NE(said.find("modules/s"), std::string::npos) << said;
+    EXPECT_NE(said.find(" left"), std::string::npos) << said;
+    // Quiet, or not on a terminal: nothing.
+    said = underATerminal(exe + " stats " + island + " -q > /dev/null", t);
+    EXPECT_EQ(said.find("modules/s"), std::string::npos) << said;
+    auto r = runGraftal("stats " + island);
+    EXPECT_EQ(r.status, 0);
+    EXPECT_EQ(r.err, "");
 }

@@ -19,6 +19,7 @@
 #include "graftal/streamed_interpretation.hpp"
 #include "graftal/streaming.hpp"
 #include "graftal/turtle.hpp"
+#include "progress_line.hpp"
 #include "standard_streams.hpp"
 
 namespace graftal::cli {
@@ -51,12 +52,12 @@ nlohmann::ordered_json bboxJson(Bounds b) {
 }  // namespace
 
 namespace {
-bool progressShown = false;  // a progress line is on stderr and needs its newline
+// The progress line of this run (on a terminal only).
+ProgressLine progressLine;
 }  // namespace
 
 void endProgressLine() {
-    if (progressShown) std::cerr << '\n';
-    progressShown = false;
+    progressLine.end();
 }
 
 std::string remedyAsFlag(Remedy r) {
@@ -105,6 +106,10 @@ std::string fileName(const InputOptions& in) {
     return in.file == "-" ? std::string(kStdinName) : in.file;
 }
 
+bool showsProgress(const InputOptions& in) {
+    return !in.quiet && ::isatty(2);
+}
+
 Loaded loadInput(const InputOptions& in) {
     if (in.steps && *in.steps < 0)
         throw usageError("-n " + std::to_string(*in.steps) +
@@ -126,6 +131,9 @@ Loaded loadInput(const InputOptions& in) {
     if (!in.quiet) printWarnings(parsed);
     Loaded l{std::move(parsed.model), 0};
     l.steps = in.steps.value_or(l.model.lsystem.derivationLength);
+    // Percent done needs the work ahead: the predicted size of every step's string.
+    if (showsProgress(in))
+        progressLine.expect(predictGrowth(l.model.lsystem, l.steps).expectedModules);
     return l;
 }
 
@@ -145,15 +153,8 @@ DeriveRequest deriveRequest(const InputOptions& in) {
     };
     // Progress for long derivations, only where a person watches (a terminal), and only
     // once a derivation has taken more than a second.
-    if (!in.quiet && ::isatty(2)) {
-        auto start = std::chrono::steady_clock::now();
-        r.progress = [start](int step, std::size_t modules) {
-            if (std::chrono::steady_clock::now() - start < std::chrono::seconds(1)) return;
-            std::cerr << "\rgraftal: step " << step << ": " << modules << " modules   "
-                      << std::flush;
-            progressShown = true;
-        };
-    }
+    if (showsProgress(in))
+        r.progress = [](int step, std::size_t modules) { progressLine.report(step, modules); };
     r.notify = [&in](const Diagnostic& d) {
         endProgressLine();
         // Notes and warnings about the run, not about a place in the file: "graftal: note:".
