@@ -177,7 +177,8 @@ TEST(Streaming, TheStreamLimitCountsTheModulesARunExpandsOneByOne) {
     const std::string refusal =
         "a streamed run would expand its modules one by one, more than the stream limit of "
         "100000000000 modules";
-    r = runGraftal("render " + stochastic.string() + " -n 30 --size 200x200 -o " + png + "2");
+    r = runGraftal("render " + stochastic.string() + " -n 30 --size 200x200 -o " +
+                   (t.path() / "s.png").string());
     EXPECT_EQ(r.status, 1);
     EXPECT_NE(r.err.find(refusal), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("subtree summaries"), std::string::npos) << r.err;
