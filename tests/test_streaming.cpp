@@ -3,6 +3,7 @@
 
 #include <cairo.h>
 
+#include "graftal/pipeline.hpp"
 #include "graftal/streamed_interpretation.hpp"
 #include "graftal/streamed_picture.hpp"
 #include "graftal/streaming.hpp"
@@ -122,4 +123,118 @@ TEST(Streaming, MemoryLimitRefusesAndStreamSucceeds) {
     EXPECT_EQ(r.status, 0) << r.err;
     EXPECT_TRUE(r.err.empty()) << r.err;
     EXPECT_NE(r.out.find("\"segments\": 8388608"), std::string::npos) << r.out;
+}
+
+TEST(Streaming, AKochCurveWithManyStrokesPerPixelIsDrawnFromItsSummaries) {
+    // fig2.5e at n = 9 has 7.8 million segments: over four per pixel of an 800x800 picture.
+    // Held, derived and stroked one by one it took seconds and 700 MB; from its summaries
+    // the time follows the image.
+    const Model koch =
+        loadExample(std::filesystem::path(GRAFTAL_EXAMPLES_DIR) / "fig2.5e-koch-curve.l");
+    RenderOptions picture;  // 800x800
+    const std::size_t limit = std::size_t(2) << 30;
+    EXPECT_TRUE(streamedPictureIsSummarised(koch, 9, limit, picture));
+    EXPECT_FALSE(streamedPictureIsSummarised(koch, 7, limit, picture)) << "312,500 segments";
+    RenderOptions thumbnail;
+    thumbnail.width = thumbnail.height = 100;
+    EXPECT_TRUE(streamedPictureIsSummarised(koch, 7, limit, thumbnail)) << "31 per pixel";
+
+    graftal::testing::TempDir t;
+    RenderRequest request;
+    request.steps = 9;
+    request.output = t.path() / "koch.png";
+    RenderResult r = render(koch, request);
+    EXPECT_EQ(r.route, RenderRoute::StreamedPicture);
+    EXPECT_TRUE(r.notes.empty()) << "the string fits; nothing to say";
+    EXPECT_EQ(graftal::testing::readFile(request.output).substr(1, 3), "PNG");
+    request.steps = 6;
+    EXPECT_EQ(render(koch, request).route, RenderRoute::LineArt);
+}
+
+namespace {
+
+const char* kWeed =
+    "Lsystem: 1\nangle increment: 25.7\naxiom: X\nX --> F[+X][-X]FX\nF --> FF\nendlsystem\n";
+const char* kStochasticWeed =
+    "Lsystem: 1\nangle increment: 25.7\naxiom: X\nX --> F[+X][-X]FX : 0.5\n"
+    "X --> F[-X]FX : 0.5\nF --> FF\nendlsystem\n";
+
+}  // namespace
+
+TEST(Streaming, TheStreamLimitCountsTheModulesARunExpandsOneByOne) {
+    using graftal::testing::runGraftal;
+    graftal::testing::TempDir t;
+    auto weed = t.write("weed.l", kWeed);
+    auto stochastic = t.write("stochastic.l", kStochasticWeed);
+    const std::string png = (t.path() / "w.png").string();
+    // Drawn from subtree summaries, the deterministic weed at n = 40 (10^12 segments)
+    // expands a few modules per pixel: under the limit.
+    auto r = runGraftal("render " + weed.string() + " -n 40 --size 200x200 -o " + png);
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(graftal::testing::readFile(png).substr(1, 3), "PNG");
+    // Random choices have no summaries: every module would be expanded, so the same count
+    // refuses the stochastic weed at n = 30 ...
+    const std::string refusal =
+        "a streamed run would expand its modules one by one, more than the stream limit of "
+        "100000000000 modules";
+    r = runGraftal("render " + stochastic.string() + " -n 30 --size 200x200 -o " +
+                   (t.path() / "s.png").string());
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find(refusal), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("subtree summaries"), std::string::npos) << r.err;
+    // ... and the deterministic one too where it is printed or counted module by module
+    // (at n = 24, 10^12 modules: at n = 40, 10^19, only a lower -n is suggested).
+    r = runGraftal("stats --no-geometry " + weed.string() + " -n 24");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find(refusal), std::string::npos) << r.err;
+    // A lower limit refuses what a higher one lets through, by the same count.
+    r = runGraftal("stats --no-geometry " + stochastic.string() +
+                   " -n 12 --memory-limit 64K --stream-limit 1000");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("stream limit of 1000 modules"), std::string::npos) << r.err;
+    r = runGraftal("stats --no-geometry " + stochastic.string() +
+                   " -n 12 --memory-limit 64K --stream-limit 100000000");
+    EXPECT_EQ(r.status, 0) << r.err;
+}
+
+TEST(Streaming, MemoryMessagesSayTheSizeInWordsAndTheRealReason) {
+    using graftal::testing::runGraftal;
+    graftal::testing::TempDir t;
+    // 10^19 modules: no memory holds them, so no larger limit is suggested.
+    auto huge = t.write("huge.l", "Lsystem: 1\naxiom: F\nF --> FFFFFFFFFF\nendlsystem\n");
+    auto r = runGraftal("render " + huge.string() + " -n 19 -o " + (t.path() / "h.svg").string());
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("would make a string of about 10^19 modules, far more than any memory"),
+              std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find("; lower -n\n"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("EiB"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("--memory-limit"), std::string::npos) << r.err;
+    // A coloured Koch island at n = 5: its string (238,000 modules) fits in 1 MiB, its
+    // 131,072 segments do not. The note says so.
+    auto koch = t.write("koch.l",
+                        "Lsystem: 1\nangle factor: 4\naxiom: ;F+F+F+F\nF --> F+F-F-FF+F+F-F\n"
+                        "endlsystem\n");
+    r = runGraftal("render " + koch.string() + " -n 5 --memory-limit 1M -o " +
+                   (t.path() / "k.png").string());
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("graftal: note: the picture's geometry would need about"),
+              std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find("(131072 segments"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("the string would have"), std::string::npos) << r.err;
+
+    // The library words its advice by the request's fields, not by the command's flags.
+    DeriveRequest request;
+    request.steps = 19;
+    std::vector<Diagnostic> notes;
+    try {
+        shouldStream(parseModel(graftal::testing::readFile(huge)), 19, request, false, true, false,
+                     notes);
+        ADD_FAILURE() << "not refused";
+    } catch (const Error& e) {
+        const std::string text = e.diagnostics().at(0).toString();
+        EXPECT_NE(text.find("; lower steps"), std::string::npos) << text;
+        EXPECT_EQ(text.find("-n"), std::string::npos) << text;
+    }
 }

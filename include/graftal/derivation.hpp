@@ -36,6 +36,8 @@ struct DerivationOptions {
     // Answers ?E modules. nullptr: the one the file's `environment:` lines describe (if any).
     Environment* environment = nullptr;
     // Called after every step with the step number and the string's size (for progress).
+    // A streamed derivation calls it every million modules of its last string with the
+    // last step's number and the modules out so far.
     std::function<void(int step, std::size_t modules)> progress;
     // Fills query modules after every step. Empty: a string with query modules is an error.
     QueryResolver queryResolver;

@@ -1,6 +1,7 @@
 // Errors are values carrying a source location; the library never prints or exits.
 #pragma once
 
+#include <functional>
 #include <ostream>
 #include <stdexcept>
 #include <string>
@@ -22,13 +23,35 @@ struct SourceLocation {
 
 enum class Severity { Error, Warning, Note };
 
+// What the caller can change to get past a problem, in terms of its request (DeriveRequest's
+// fields). The library words them by those fields; a front end words them in its own terms
+// (the graftal command names its flags: -n, --memory-limit, --stream, --stream-limit).
+enum class Remedy {
+    LowerSteps,        // DeriveRequest::steps
+    RaiseMemoryLimit,  // DeriveRequest::memoryLimit
+    Stream,            // DeriveRequest::stream = StreamPolicy::Always
+    RaiseStreamLimit,  // DeriveRequest::streamLimit
+};
+
+// "lower steps", "raise memoryLimit", "set stream to StreamPolicy::Always", "raise
+// streamLimit".
+std::string requestRemedyText(Remedy r);
+
 struct Diagnostic {
     Severity severity = Severity::Error;
     SourceLocation location;
     std::string message;
+    // The request's fields the message is about ("viewpoint", "samplesPerPixel"), listed
+    // after it: "...: viewpoint, samplesPerPixel".
+    std::vector<std::string> fields;
+    // Advice appended to the message: "; lower steps or raise memoryLimit".
+    std::vector<Remedy> remedies;
 
     // "file:line:column: error: message", the form compilers and editors understand.
     std::string toString() const;
+    // The same with the fields and remedies worded by a front end (e.g. as its flags).
+    std::string toString(const std::function<std::string(Remedy)>& remedy,
+                         const std::function<std::string(const std::string&)>& field) const;
 };
 
 std::ostream& operator<<(std::ostream& os, const SourceLocation& loc);

@@ -36,7 +36,9 @@ struct DeriveRequest {
     unsigned threads = 0;  // 0: one per core
     std::size_t memoryLimit = std::size_t(2) << 30;
     StreamPolicy stream = StreamPolicy::Auto;
-    std::uint64_t streamLimit = 100'000'000'000ull;  // the largest string streamed
+    // The most modules a streamed run may expand one by one (a picture drawn from subtree
+    // summaries expands a few per pixel and is not counted against it).
+    std::uint64_t streamLimit = 100'000'000'000ull;
     // Called after every derivation step with the step and the string's size.
     std::function<void(int step, std::size_t modules)> progress;
     // Called at once with every note (e.g. "streaming it instead"); they are also returned.
@@ -85,9 +87,11 @@ struct RenderResult {
 int requestedSteps(const Model& model, const DeriveRequest& request);
 
 // Whether to stream. Auto: when the predicted string would not fit the memory limit and
-// `canStream` (with a note). When it would not fit and cannot stream, throws before
-// anything is allocated. A streamed run longer than streamLimit is refused unless
-// `pixelBound` (a picture whose time grows with its pixels, not with the string).
+// `canStream` (with a note saying whether the string or the picture's geometry does not
+// fit). When it would not fit and cannot stream, throws before anything is allocated; the
+// Error's Diagnostic carries its remedies (Remedy). A streamed run that would expand more
+// than streamLimit modules one by one is refused; a `pixelBound` picture (drawn from
+// subtree summaries, its time growing with its pixels) expands a few per pixel.
 bool shouldStream(const Model& model, int steps, const DeriveRequest& request, bool canStream,
                   bool countGeometry, bool pixelBound, std::vector<Diagnostic>& notes);
 

@@ -12,10 +12,13 @@ namespace graftal {
 
 // True when renderStreamedPng draws this derivation from subtree summaries: a picture with
 // far more segments than pixels, whose subtrees smaller than a pixel are drawn as one
-// stroke each, so that its time grows with the image rather than with the string.
-// The summaries' table must fit in half of `memoryLimit` bytes.
+// stroke each, so that its time grows with the image rather than with the string: more
+// than four segments per pixel of `picture` (at most 2e7). The summaries' table must fit in
+// half of `memoryLimit` bytes. render() then draws the picture this way even when the
+// string would fit in memory.
 bool streamedPictureIsSummarised(const Model& model, int steps,
-                                 std::size_t memoryLimit = std::size_t(2) << 30);
+                                 std::size_t memoryLimit = std::size_t(2) << 30,
+                                 const RenderOptions& picture = {});
 
 // A 2D PNG of the derivation drawn while streaming (two passes: measure, then draw).
 void renderStreamedPng(const Model& model, int steps, const DerivationOptions& options,

@@ -19,6 +19,8 @@
 #include "graftal/streamed_interpretation.hpp"
 #include "graftal/streaming.hpp"
 #include "graftal/turtle.hpp"
+#include "progress_line.hpp"
+#include "standard_streams.hpp"
 
 namespace graftal::cli {
 
@@ -50,16 +52,62 @@ nlohmann::ordered_json bboxJson(Bounds b) {
 }  // namespace
 
 namespace {
-bool progressShown = false;  // a progress line is on stderr and needs its newline
+// The progress line of this run (on a terminal only).
+ProgressLine progressLine;
 }  // namespace
 
 void endProgressLine() {
-    if (progressShown) std::cerr << '\n';
-    progressShown = false;
+    progressLine.end();
+}
+
+std::string remedyAsFlag(Remedy r) {
+    switch (r) {
+        case Remedy::LowerSteps:
+            return "lower -n";
+        case Remedy::RaiseMemoryLimit:
+            return "raise --memory-limit";
+        case Remedy::Stream:
+            return "use --stream";
+        case Remedy::RaiseStreamLimit:
+            return "raise --stream-limit";
+    }
+    return {};
+}
+
+std::string settingAsFlag(const std::string& field) {
+    static const std::map<std::string, std::string> flags = {{"viewpoint", "--viewpoint"},
+                                                             {"target", "--target"},
+                                                             {"up", "--up"},
+                                                             {"light", "--light"},
+                                                             {"fieldOfView", "--fov"},
+                                                             {"samplesPerPixel", "--spp"},
+                                                             {"tubeSides", "--tube-sides"},
+                                                             {"lineWidth", "--line-width"},
+                                                             {"lineColor", "--color"},
+                                                             {"margin", "--margin"},
+                                                             {"steps", "-n"},
+                                                             {"memoryLimit", "--memory-limit"},
+                                                             {"streamLimit", "--stream-limit"},
+                                                             {"view", "--view"},
+                                                             {"derivationDiagram", "--derivation"}};
+    auto it = flags.find(field);
+    return it == flags.end() ? field : it->second;
+}
+
+std::string describe(const Diagnostic& d) {
+    return d.toString(remedyAsFlag, settingAsFlag);
 }
 
 void note(const InputOptions& in, const std::string& message) {
     if (!in.quiet) std::cerr << "graftal: note: " << message << '\n';
+}
+
+std::string fileName(const InputOptions& in) {
+    return in.file == "-" ? std::string(kStdinName) : in.file;
+}
+
+bool showsProgress(const InputOptions& in) {
+    return !in.quiet && ::isatty(2);
 }
 
 Loaded loadInput(const InputOptions& in) {
@@ -69,11 +117,23 @@ Loaded loadInput(const InputOptions& in) {
     ParseOptions po;
     po.defines = in.defines;
     po.viewFile = in.viewFile;
-    ParseResult parsed = loadModel(in.file, po);
+    std::optional<ScratchFile> input;
+    std::filesystem::path path = in.file;
+    if (in.file == "-") {
+        // Standard input, kept in a scratch file; its diagnostics name <stdin>.
+        input.emplace("stdin.l");
+        saveStandardInput(*input);
+        path = input->path();
+        po.fileName = kStdinName;
+    }
+    ParseResult parsed = loadModel(path, po);
     if (!parsed.ok()) throw Error(parsed.errors());
     if (!in.quiet) printWarnings(parsed);
     Loaded l{std::move(parsed.model), 0};
     l.steps = in.steps.value_or(l.model.lsystem.derivationLength);
+    // Percent done needs the work ahead: the predicted size of every step's string.
+    if (showsProgress(in))
+        progressLine.expect(predictGrowth(l.model.lsystem, l.steps).expectedModules);
     return l;
 }
 
@@ -93,18 +153,14 @@ DeriveRequest deriveRequest(const InputOptions& in) {
     };
     // Progress for long derivations, only where a person watches (a terminal), and only
     // once a derivation has taken more than a second.
-    if (!in.quiet && ::isatty(2)) {
-        auto start = std::chrono::steady_clock::now();
-        r.progress = [start](int step, std::size_t modules) {
-            if (std::chrono::steady_clock::now() - start < std::chrono::seconds(1)) return;
-            std::cerr << "\rgraftal: step " << step << ": " << modules << " modules   "
-                      << std::flush;
-            progressShown = true;
-        };
-    }
+    if (showsProgress(in))
+        r.progress = [](int step, std::size_t modules) { progressLine.report(step, modules); };
     r.notify = [&in](const Diagnostic& d) {
         endProgressLine();
-        note(in, d.message);
+        // Notes and warnings about the run, not about a place in the file: "graftal: note:".
+        Diagnostic run = d;
+        run.location = SourceLocation{"graftal", 0, 0};
+        if (!in.quiet) std::cerr << describe(run) << '\n';
     };
     return r;
 }
@@ -204,48 +260,6 @@ Rgb parseColor(const std::string& text) {
 
 namespace {
 
-class PrintingSink : public ModuleSink {
-  public:
-    explicit PrintingSink(const SymbolTable& t) : table_(t) { buffer_.reserve(1 << 16); }
-    ~PrintingSink() override { flush(); }
-    void module(Symbol s, std::span<const double> params) override {
-        appendModuleText(buffer_, table_, s, params);
-        if (buffer_.size() > (1 << 16) - 512) flush();
-    }
-    void flush() {
-        std::cout.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
-        buffer_.clear();
-    }
-
-  private:
-    const SymbolTable& table_;
-    std::string buffer_;
-};
-
-}  // namespace
-
-int runDerive(const InputOptions& in, bool homomorphism) {
-    Loaded l = loadInput(in);
-    if (chooseStreaming(l, in, !homomorphism)) {
-        {
-            PrintingSink out(l.model.lsystem.symbols);
-            streamDerivation(l.model.lsystem, l.steps, out, derivationOptions(in, l.model));
-        }
-        std::cout << '\n';
-        std::cout.flush();
-        return std::cout ? 0 : 1;
-    }
-    Derived d = deriveLoaded(std::move(l), in);
-    if (homomorphism)
-        d.modules = applyHomomorphism(d.model.lsystem, d.modules, derivationOptions(in, d.model));
-    d.modules.print(std::cout, d.model.lsystem.symbols);
-    std::cout << '\n';
-    std::cout.flush();
-    return std::cout ? 0 : 1;
-}
-
-namespace {
-
 // Exact counts as JSON numbers while a double holds them exactly, as decimal strings after.
 nlohmann::ordered_json countJson(const BigCount& c) {
     auto v = c.toUint64();
@@ -271,7 +285,7 @@ int printPrediction(const InputOptions& in, const Loaded& l) {
         throw Error(SourceLocation{l.model.lsystem.file, 0, 0},
                     "cannot predict the growth: " + g.reason);
     nlohmann::ordered_json j;
-    j["file"] = in.file;
+    j["file"] = fileName(in);
     j["steps"] = l.steps;
     j["prediction"] = g.exact ? "exact" : "expected";
     if (g.exact) {
@@ -299,7 +313,7 @@ int runStats(const InputOptions& in, bool geometry, bool predict) {
     Loaded l = loadInput(in);
     if (predict) return printPrediction(in, l);
     nlohmann::ordered_json j;
-    j["file"] = in.file;
+    j["file"] = fileName(in);
     j["steps"] = l.steps;
     if (chooseStreaming(l, in, true)) {
         StreamedMeasure m =

@@ -26,11 +26,12 @@ struct InputOptions {
     unsigned threads = 0;
     bool stream = false;  // --stream: expand depth-first, never hold the string
     bool quiet = false;   // --quiet: no notes or warnings on stderr
-    std::uint64_t streamLimit = 100'000'000'000ull;  // --stream-limit: largest streamed string
+    std::uint64_t streamLimit = 100'000'000'000ull;  // --stream-limit: most modules expanded
 };
 
 struct RenderCommandOptions {
-    std::string output;
+    std::string output;        // "-": standard output
+    std::string outputFormat;  // --format, for -o - (default svg)
     RenderOptions render;
     std::string view;  // --view front|back|side|top: 3D as 2D line art
     std::optional<Vec3> viewpoint, target, up, light;
@@ -44,7 +45,8 @@ struct RenderCommandOptions {
     bool derivation = false;  // --derivation: draw the derivation steps, not the turtle's picture
 };
 
-int runDerive(const InputOptions& in, bool homomorphism);
+enum class DeriveFormat { Text, Json };
+int runDerive(const InputOptions& in, bool homomorphism, DeriveFormat format);
 int runStats(const InputOptions& in, bool geometry, bool predict);
 int runRender(const InputOptions& in, const RenderCommandOptions& out);
 
@@ -55,6 +57,8 @@ struct Loaded {
     int steps = 0;
 };
 Loaded loadInput(const InputOptions& in);
+// The input's name in output: the file, or <stdin> for "-".
+std::string fileName(const InputOptions& in);
 
 // What derive, stats and render share: the parsed file, its derived string, the step count.
 struct Derived {
@@ -71,6 +75,10 @@ DerivationOptions derivationOptions(const InputOptions& in, const Model& model);
 bool chooseStreaming(const Loaded& l, const InputOptions& in, bool canStream,
                      bool countGeometry = false, bool pixelBound = false);
 void note(const InputOptions& in, const std::string& message);
+// The library's remedies in the command's terms: "lower -n", "raise --memory-limit", ...
+std::string remedyAsFlag(Remedy r);
+// A diagnostic as printed on stderr, its remedies worded as flags.
+std::string describe(const Diagnostic& d);
 void endProgressLine();
 
 // "2G", "512M", "1000000" -> bytes; throws Error on a malformed size.

@@ -12,7 +12,9 @@
 namespace {
 
 void addInputOptions(CLI::App& cmd, graftal::cli::InputOptions& in, std::string& memoryLimit) {
-    cmd.add_option("file", in.file, "L-system file (.l), or a model folder with one .l and .v")
+    cmd.add_option("file", in.file,
+                   "L-system file (.l), a model folder with one .l and .v, or - for standard "
+                   "input")
         ->required();
     cmd.add_option("view", in.viewFile, "cpfg view file (.v); its settings win over the .l's");
     cmd.add_option("-n,--steps", in.steps, "derivation length (overrides the file)");
@@ -40,7 +42,8 @@ void addInputOptions(CLI::App& cmd, graftal::cli::InputOptions& in, std::string&
                  "(L-systems without context; chosen by itself when the string would not fit)");
     cmd.add_flag("-q,--quiet", in.quiet, "no notes or warnings on stderr");
     cmd.add_option("--stream-limit", in.streamLimit,
-                   "largest string (modules) streamed when it does not fit in memory (1e11)");
+                   "most modules a streamed run expands one by one (1e11); a picture drawn "
+                   "from subtree summaries expands a few per pixel");
 }
 
 // What an option's value must be, in the words of its message.
@@ -131,6 +134,12 @@ int main(int argc, char** argv) {
     auto* derive = app.add_subcommand("derive", "print the derived module string");
     addInputOptions(*derive, in, memoryLimit);
     derive->add_flag("--homo", homomorphism, "print the string after the homomorphism");
+    std::string deriveFormat = "text";
+    derive
+        ->add_option("--format", deriveFormat,
+                     "text (as the L-system file writes modules) or json (one object per "
+                     "module with its parameters; docs/cli.md)")
+        ->check(CLI::IsMember({"text", "json"}));
 
     auto* stats = app.add_subcommand("stats", "print counts and bounds as JSON");
     addInputOptions(*stats, in, memoryLimit);
@@ -146,8 +155,12 @@ int main(int argc, char** argv) {
     addInputOptions(*render, in, memoryLimit);
     render
         ->add_option("-o,--output", out.output,
-                     "output file: " + graftal::extensionList(std::nullopt, " ", " "))
+                     "output file: " + graftal::extensionList(std::nullopt, " ", " ") +
+                         "; - for standard output")
         ->required();
+    render->add_option("--format", out.outputFormat,
+                       "format written by -o -: svg (default) or obj; png pdf ply glb only "
+                       "into a pipe or file");
     render->add_option("--size", size, "picture size WxH in pixels (default 800x800)");
     render->add_option("--line-width", out.render.lineWidth, "line width in pixels (0: automatic)")
         ->check(CLI::Range(0.0, 1000.0));
@@ -203,7 +216,11 @@ int main(int argc, char** argv) {
     try {
         if (!memoryLimit.empty()) in.memoryLimit = graftal::cli::parseByteSize(memoryLimit);
         if (*studio.command) return graftal::cli::runStudio(studio);
-        if (*derive) return graftal::cli::runDerive(in, homomorphism);
+        if (*derive)
+            return graftal::cli::runDerive(in, homomorphism,
+                                           deriveFormat == "json"
+                                               ? graftal::cli::DeriveFormat::Json
+                                               : graftal::cli::DeriveFormat::Text);
         if (*stats) return graftal::cli::runStats(in, !noGeometry, predict);
         if (*music) return graftal::cli::runMusic(in, musicOut);
         if (!size.empty()) graftal::cli::parseImageSize(size, out.render.width, out.render.height);
@@ -216,7 +233,7 @@ int main(int argc, char** argv) {
         if (!color.empty()) out.render.lineColor = graftal::cli::parseColor(color);
         return graftal::cli::runRender(in, out);
     } catch (const graftal::Error& e) {
-        for (const auto& d : e.diagnostics()) std::cerr << d.toString() << '\n';
+        for (const auto& d : e.diagnostics()) std::cerr << graftal::cli::describe(d) << '\n';
         return 1;
     } catch (const std::bad_alloc&) {
         std::cerr << "graftal: error: out of memory (lower -n or --memory-limit)\n";

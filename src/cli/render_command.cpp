@@ -1,15 +1,55 @@
 // graftal render: the options become a RenderRequest, and the library's render() decides
 // the rest (streaming, line art or ray tracing, surfaces, camera).
+#include <unistd.h>
+
+#include <optional>
+
 #include "commands.hpp"
+#include "graftal/file_format.hpp"
 #include "graftal/pipeline.hpp"
+#include "standard_streams.hpp"
 
 namespace graftal::cli {
+
+namespace {
+
+Error usageError(const std::string& message) {
+    return Error(SourceLocation{"graftal", 0, 0}, message);
+}
+
+// The format written to standard output by -o -: --format's, else SVG. Binary formats are
+// refused when standard output is a terminal.
+FileFormat standardOutputFormat(const RenderCommandOptions& out) {
+    const std::string name = out.outputFormat.empty() ? "svg" : out.outputFormat;
+    const std::optional<FileFormat> format = fileFormatFor("out." + name);
+    if (!format)
+        throw usageError("--format " + name + ": unknown format (use " +
+                         extensionList(std::nullopt, ", ", " or ") + " without the dot)");
+    const bool text = *format == FileFormat::Svg || *format == FileFormat::Obj;
+    if (!text && ::isatty(1))
+        throw usageError("-o -: " + std::string(fileFormatInfo(*format).name) +
+                         " is binary and standard output is a terminal; redirect it "
+                         "(> file) or pipe it, or name a file with -o");
+    return *format;
+}
+
+}  // namespace
 
 int runRender(const InputOptions& in, const RenderCommandOptions& out) {
     RenderRequest request;
     static_cast<DeriveRequest&>(request) = deriveRequest(in);
-    request.output = out.output;
-    request.sourceFile = in.file;
+    std::optional<ScratchFile> scratch;
+    if (out.output == "-") {
+        const FileFormat format = standardOutputFormat(out);
+        scratch.emplace("out" + std::string(fileFormatInfo(format).extension));
+        request.output = scratch->path();
+    } else {
+        if (!out.outputFormat.empty())
+            throw usageError("--format applies to -o - (standard output); the extension of " +
+                             out.output + " names its format");
+        request.output = out.output;
+    }
+    request.sourceFile = in.file == "-" ? std::string() : in.file;
     request.picture = out.render;
     if (out.backgroundGiven) request.background = out.render.background;
     if (!out.view.empty()) {
@@ -35,6 +75,7 @@ int runRender(const InputOptions& in, const RenderCommandOptions& out) {
     request.steps = l.steps;
     render(l.model, request);
     endProgressLine();
+    if (scratch && !copyToStandardOutput(request.output)) return 1;
     return 0;
 }
 

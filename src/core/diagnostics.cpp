@@ -25,8 +25,32 @@ static const char* severityName(Severity s) {
     return "error";
 }
 
+std::string requestRemedyText(Remedy r) {
+    switch (r) {
+        case Remedy::LowerSteps:
+            return "lower steps";
+        case Remedy::RaiseMemoryLimit:
+            return "raise memoryLimit";
+        case Remedy::Stream:
+            return "set stream to StreamPolicy::Always";
+        case Remedy::RaiseStreamLimit:
+            return "raise streamLimit";
+    }
+    return {};
+}
+
 std::string Diagnostic::toString() const {
-    return location.toString() + ": " + severityName(severity) + ": " + message;
+    return toString(requestRemedyText, [](const std::string& f) { return f; });
+}
+
+std::string Diagnostic::toString(
+    const std::function<std::string(Remedy)>& remedy,
+    const std::function<std::string(const std::string&)>& field) const {
+    std::string s = location.toString() + ": " + severityName(severity) + ": " + message;
+    for (std::size_t i = 0; i < fields.size(); ++i) s += (i == 0 ? ": " : ", ") + field(fields[i]);
+    for (std::size_t i = 0; i < remedies.size(); ++i)
+        s += (i == 0 ? "; " : i + 1 == remedies.size() ? " or " : ", ") + remedy(remedies[i]);
+    return s;
 }
 
 std::ostream& operator<<(std::ostream& os, const SourceLocation& loc) {

@@ -11,13 +11,18 @@ namespace graftal {
 
 namespace {
 
-// Past this many segments a picture has far more strokes than pixels; subtrees smaller
-// than a pixel are then drawn as one stroke each (subtree_summaries.hpp). Below it the
-// picture is stroke for stroke the one the materialised path draws.
-constexpr double kSummariseAbove = 2e7;
 // Strokes a summarised picture draws per pixel of its image at most, unless that would take
 // subtrees wider than kLargestDotRadius pixels drawn as one stroke.
 constexpr double kStrokesPerPixel = 4;
+// Past this many segments a picture has far more strokes than pixels; subtrees smaller
+// than a pixel are then drawn as one stroke each (subtree_summaries.hpp). Below it the
+// picture is stroke for stroke the one the materialised path draws. The bound follows the
+// image (a Koch curve of 8 million segments in 800x800 pixels would otherwise be derived,
+// held and stroked segment by segment), and never exceeds kSummariseAbove.
+constexpr double kSummariseAbove = 2e7;
+double summariseAbove(const RenderOptions& picture) {
+    return std::min(kSummariseAbove, kStrokesPerPixel * picture.width * picture.height);
+}
 constexpr double kLargestDotRadius = 4;
 
 // What the turtle draws goes straight into the picture.
@@ -33,15 +38,16 @@ class PngDrawing : public StreamedDrawing {
 
 }  // namespace
 
-bool streamedPictureIsSummarised(const Model& model, int steps, std::size_t memoryLimit) {
+bool streamedPictureIsSummarised(const Model& model, int steps, std::size_t memoryLimit,
+                                 const RenderOptions& picture) {
     SubtreeSummaries sums(model, steps, memoryLimit);
-    return sums.available() && sums.segments() > kSummariseAbove;
+    return sums.available() && sums.segments() > summariseAbove(picture);
 }
 
 void renderStreamedPng(const Model& model, int steps, const DerivationOptions& options,
                        const RenderOptions& render, const std::filesystem::path& path) {
     if (SubtreeSummaries sums(model, steps, options.memoryLimit);
-        sums.available() && sums.segments() > kSummariseAbove) {
+        sums.available() && sums.segments() > summariseAbove(render)) {
         renderSummarisedPng(model, sums, render, path);
         return;
     }

@@ -123,19 +123,71 @@ void addNote(RenderResult& result, const RenderRequest& request, const Model& mo
     result.notes.push_back(std::move(d));
 }
 
+// The camera settings a request gives: they apply to ray-traced pictures only.
+std::vector<std::string> cameraSettingsGiven(const RenderRequest& request) {
+    const RenderRequest defaults;
+    std::vector<std::string> given;
+    if (request.viewpoint) given.push_back("viewpoint");
+    if (request.target) given.push_back("target");
+    if (request.up) given.push_back("up");
+    if (request.light) given.push_back("light");
+    if (request.fieldOfView) given.push_back("fieldOfView");
+    if (request.samplesPerPixel != defaults.samplesPerPixel) given.push_back("samplesPerPixel");
+    return given;
+}
+
+// The line art settings a request gives: a ray-traced picture or a 3D file has no lines.
+std::vector<std::string> lineArtSettingsGiven(const RenderRequest& request) {
+    const RenderOptions defaults;
+    std::vector<std::string> given;
+    if (request.picture.lineWidth != defaults.lineWidth) given.push_back("lineWidth");
+    if (request.picture.lineColor) given.push_back("lineColor");
+    if (request.picture.margin != defaults.margin) given.push_back("margin");
+    return given;
+}
+
+// Settings the route taken does not use are said, not silently dropped.
+void warnIgnored(RenderResult& result, const RenderRequest& request, const Model& model,
+                 std::string message, std::vector<std::string> fields) {
+    if (fields.empty()) return;
+    Diagnostic d{Severity::Warning, SourceLocation{model.lsystem.file, 0, 0}, std::move(message)};
+    d.fields = std::move(fields);
+    if (request.notify) request.notify(d);
+    result.notes.push_back(std::move(d));
+}
+
+// Line art (2D scenes, 3D ones seen from a view, streamed pictures and derivations): no
+// camera, no tubes.
+void warnLineArtIgnores(RenderResult& result, const RenderRequest& request, const Model& model,
+                        bool scene3D) {
+    std::vector<std::string> fields = cameraSettingsGiven(request);
+    if (request.tubeSides != RenderRequest{}.tubeSides) fields.push_back("tubeSides");
+    warnIgnored(result, request, model,
+                scene3D ? "the 3D scene is drawn as 2D line art; its 3D settings are ignored"
+                        : "the scene is 2D and drawn as line art; 3D settings are ignored",
+                std::move(fields));
+}
+
 }  // namespace
 
 FileFormat checkRenderRequest(const RenderRequest& request) {
     const std::string output = request.output.string();
     const std::optional<FileFormat> format = fileFormatFor(output);
-    if (!format)
-        throw requestError("-o " + output + ": unknown format (use " + extensionList() + ")");
+    if (!format) throw requestError(output + ": unknown format (use " + extensionList() + ")");
     const bool picture = fileFormatInfo(*format).kind == FormatKind::Picture;
+    // Messages name the request's fields; the command names them as its flags.
+    auto misfit = [](std::string message, std::string field) {
+        Diagnostic d{Severity::Error, SourceLocation{"graftal", 0, 0}, std::move(message)};
+        d.fields = {std::move(field)};
+        return Error(std::move(d));
+    };
     if (request.view && !picture)
-        throw requestError("--view draws 2D line art; it applies to " +
-                           extensionList(FormatKind::Picture, ", ", " and ") + ", not 3D files");
+        throw misfit("a view direction draws 2D line art; it applies to " +
+                         extensionList(FormatKind::Picture, ", ", " and ") + ", not 3D files",
+                     "view");
     if (request.derivationDiagram && !picture)
-        throw requestError("--derivation draws a picture; use .svg, .png or .pdf");
+        throw misfit("a derivation diagram is a picture; use .svg, .png or .pdf",
+                     "derivationDiagram");
     return *format;
 }
 
@@ -167,6 +219,7 @@ RenderResult render(const Model& model, const RenderRequest& request) {
     const int steps = result.steps;
     if (request.derivationDiagram) {
         request.cancel.check();
+        warnLineArtIgnores(result, request, model, false);
         renderDerivation(model, steps, request);
         result.route = RenderRoute::DerivationDiagram;
         return result;
@@ -175,8 +228,16 @@ RenderResult render(const Model& model, const RenderRequest& request) {
     {
         // A 2D PNG can be drawn while the derivation streams; everything else needs the scene.
         bool png2D = *format == FileFormat::Png;
-        bool pixelBound = png2D && streamedPictureIsSummarised(model, steps, request.memoryLimit);
-        if (shouldStream(model, steps, request, png2D, true, pixelBound, result.notes)) {
+        bool pixelBound = png2D && streamedPictureIsSummarised(model, steps, request.memoryLimit,
+                                                               request.picture);
+        // A picture with many strokes per pixel is drawn from its subtree summaries even when
+        // its string would fit: its time then grows with the image, not with the string.
+        // (The streamed picture has neither colour maps nor splines.)
+        const bool plainLines = model.view.colorMap.empty() &&
+                                request.spline.value_or(model.view.splineSubdivisions) <= 0;
+        if ((pixelBound && plainLines) ||
+            shouldStream(model, steps, request, png2D, true, pixelBound, result.notes)) {
+            warnLineArtIgnores(result, request, model, false);
             RenderOptions render = request.picture;
             double fill = std::clamp(model.view.scaleFactor / 100.0, 0.01, 1.0);
             render.margin = 0.5 - (0.5 - render.margin) * fill;
@@ -199,6 +260,7 @@ RenderResult render(const Model& model, const RenderRequest& request) {
         // No turtle meaning (Anabaena's cells, the Fibonacci words): the derivation is
         // the picture the book draws for such systems.
         addNote(result, request, model, "the string draws nothing; drawing its derivation instead");
+        warnLineArtIgnores(result, request, model, false);
         renderDerivation(model, steps, request);
         result.route = RenderRoute::DerivationDiagram;
         return result;
@@ -209,6 +271,7 @@ RenderResult render(const Model& model, const RenderRequest& request) {
     if (picture && !(threeD && *format == FileFormat::Png)) {
         // Line art: 2D scenes as they are, 3D scenes seen from the front unless told.
         // Discs and spheres are drawn as their projected outlines.
+        warnLineArtIgnores(result, request, model, scene.is3D);
         if (scene.is3D || !scene.discs.empty() || !scene.spheres.empty())
             scene = projectScene(scene, request.view.value_or(ViewDirection::Front));
         writeImage(scene, lineArtOptions(model, request), output);
@@ -216,6 +279,14 @@ RenderResult render(const Model& model, const RenderRequest& request) {
         return result;
     }
 
+    warnIgnored(result, request, model,
+                picture ? "the 3D scene is ray traced, without lines; line settings are ignored"
+                        : "a 3D file holds no lines; line settings are ignored",
+                lineArtSettingsGiven(request));
+    if (!picture)
+        warnIgnored(result, request, model,
+                    "a 3D file holds no camera or light; these settings are ignored",
+                    cameraSettingsGiven(request));
     // Uncoloured 3D plants are bark brown, not line art's ink, so their shading shows.
     if (model.view.colorMap.empty()) scene.palette = defaultPalette3D();
     SurfaceLibrary surfaces = surfacesFor(model.view, folder);

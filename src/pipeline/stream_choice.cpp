@@ -1,5 +1,7 @@
 // Whether a derivation is held in memory or streamed depth-first, and the options a request
 // makes for a derivation.
+#include <unistd.h>
+
 #include <cmath>
 
 #include "graftal/growth.hpp"
@@ -10,10 +12,13 @@
 namespace graftal {
 
 int requestedSteps(const Model& model, const DeriveRequest& request) {
-    if (request.steps && *request.steps < 0)
-        throw Error(
-            SourceLocation{"graftal", 0, 0},
-            "-n " + std::to_string(*request.steps) + ": the derivation length must be 0 or more");
+    if (request.steps && *request.steps < 0) {
+        Diagnostic d{Severity::Error, SourceLocation{"graftal", 0, 0},
+                     "a derivation length of " + std::to_string(*request.steps) +
+                         " steps: it must be 0 or more"};
+        d.fields = {"steps"};
+        throw Error(std::move(d));
+    }
     return request.steps.value_or(model.lsystem.derivationLength);
 }
 
@@ -29,57 +34,123 @@ DerivationOptions derivationOptions(const Model& model, const DeriveRequest& req
     return opts;
 }
 
+namespace {
+
+// Past this many bytes no computer holds a string: say so rather than suggest more memory.
+constexpr double kBeyondAnyMemory = 1e15;
+// A streamed run expands about 10^8 modules a second: past this many the run would take
+// more than a day, so a higher stream limit is no advice.
+constexpr double kLongestStreamWorthSuggesting = 1e13;
+
+// "4083900331739" while exact and readable, "about 10^19" past it.
+std::string modulesInWords(const GrowthPrediction& g) {
+    const double last = g.expectedModules.back();
+    if (!std::isfinite(last)) return "more than 10^308";
+    if (last >= 1e15) return "about 10^" + std::to_string(std::lround(std::log10(last)));
+    if (g.exact) return g.modules.back().toString();
+    return "about " + formatNumber(std::round(last));
+}
+
+std::string bytesInWords(double bytes) {
+    return bytes >= kBeyondAnyMemory ? "far more than any memory" : "about " + formatBytes(bytes);
+}
+
+double physicalMemory() {
+    const long pages = ::sysconf(_SC_PHYS_PAGES), size = ::sysconf(_SC_PAGE_SIZE);
+    return pages > 0 && size > 0 ? static_cast<double>(pages) * static_cast<double>(size) : 0;
+}
+
+}  // namespace
+
 bool shouldStream(const Model& model, int steps, const DeriveRequest& request, bool canStream,
                   bool countGeometry, bool pixelBound, std::vector<Diagnostic>& notes) {
     const LSystem& ls = model.lsystem;
     std::string obstacle = streamingObstacle(ls);
     if (request.stream == StreamPolicy::Always) {
         if (!obstacle.empty())
-            throw Error(SourceLocation{ls.file, 0, 0},
-                        "--stream: this L-system cannot be streamed: " + obstacle);
+            throw Error(
+                SourceLocation{ls.file, 0, 0},
+                "streaming was asked for, but this L-system cannot be streamed: " + obstacle);
         if (!canStream)
             throw Error(SourceLocation{"graftal", 0, 0},
-                        "--stream is not available for this output");
+                        "streaming was asked for, but this output needs the whole string or "
+                        "scene (streamed: derive, stats and 2D PNG pictures)");
         return true;
     }
     GrowthPrediction g = predictGrowth(ls, steps);
     if (g.expectedModules.size() < 2) return false;
-    // Streaming needs no memory, but time grows with the string: past this many modules a
-    // run would take hours, so it is refused with a message rather than started.
-    const double streamLimit = static_cast<double>(request.streamLimit);
     // The last step holds the previous string and the new one; parameters take more.
     double perModule = ls.isParametric() ? 1 + 4 + 8 * 2 : 1;
     double last = g.expectedModules.back(),
            previous = g.expectedModules[g.expectedModules.size() - 2];
-    double bytes = (last + previous) * perModule;
-    // A picture drawn from a held string also holds its segments.
+    double stringBytes = (last + previous) * perModule;
+    double bytes = stringBytes;
+    // A picture drawn from a held string also holds its segments, usually far more than the
+    // string itself.
+    double segments = 0, geometryBytes = 0;
     if (countGeometry && g.exact) {
-        double segments = 0;
         for (Symbol s : {Symbol('F'), Symbol('G')})
             if (s < g.symbolsAtEnd.size()) segments += g.symbolsAtEnd[s].toDouble();
-        bytes = last * perModule + segments * static_cast<double>(sizeof(Segment));
+        geometryBytes = segments * static_cast<double>(sizeof(Segment));
+        stringBytes = last * perModule;
+        bytes = stringBytes + geometryBytes;
     }
-    if (bytes <= static_cast<double>(request.memoryLimit)) return false;
-    std::string size =
-        g.exact ? g.modules.back().toString() : "about " + formatNumber(std::round(last));
-    if (canStream && obstacle.empty() && last > streamLimit && !pixelBound)
-        obstacle = "more than --stream-limit " + formatNumber(streamLimit) + " modules";
-    if (canStream && obstacle.empty()) {
+    const double limit = static_cast<double>(request.memoryLimit);
+    if (bytes <= limit) return false;
+    const std::string size = modulesInWords(g);
+    const bool geometryIsTheReason = geometryBytes > 0 && stringBytes <= limit;
+
+    // The stream limit bounds the modules a streamed run expands: the whole string when it
+    // is printed, counted or drawn stroke by stroke, a few per pixel for a picture drawn
+    // from subtree summaries (docs/streaming.md). Every output is judged by that one count.
+    const double streamLimit = static_cast<double>(request.streamLimit);
+    const double expanded = pixelBound ? 0 : last;
+    std::string overStreamLimit;
+    if (canStream && obstacle.empty() && expanded > streamLimit)
+        overStreamLimit =
+            "a streamed run would expand its modules one by one, more than the stream limit "
+            "of " +
+            formatNumber(streamLimit) + " modules" +
+            (countGeometry ? "; only pictures of deterministic L-systems without parameters, "
+                             "colours or widths are drawn from subtree summaries, in a time "
+                             "that follows the image"
+                           : "");
+    if (canStream && obstacle.empty() && overStreamLimit.empty()) {
+        std::string why =
+            geometryIsTheReason
+                ? "the picture's geometry would need " + bytesInWords(bytes) + " (" +
+                      formatNumber(segments) + " segments of a " + size + "-module string)"
+                : "the string would have " + size + " modules (" + bytesInWords(stringBytes) + ")";
         Diagnostic d{Severity::Note, SourceLocation{ls.file, 0, 0},
-                     "the string would have " + size +
-                         " modules, more than --memory-limit holds; streaming it instead"};
+                     why + ", more than the memory limit of " + formatBytes(limit) +
+                         "; streaming it instead"};
         if (request.notify) request.notify(d);
         notes.push_back(std::move(d));
         return true;
     }
-    throw Error(
-        SourceLocation{ls.file, 0, 0},
-        "derivation step " + std::to_string(steps) + " would make a string of " + size +
-            " modules (about " + formatBytes(bytes) + "), more than the memory limit of " +
-            formatBytes(static_cast<double>(request.memoryLimit)) +
-            "; lower the derivation length (-n) or raise --memory-limit" +
-            (obstacle.empty() || !canStream ? std::string()
-                                            : " (it cannot be streamed: " + obstacle + ")"));
+    Diagnostic d{Severity::Error, SourceLocation{ls.file, 0, 0},
+                 "derivation step " + std::to_string(steps) + " would make a string of " + size +
+                     " modules"};
+    if (bytes >= kBeyondAnyMemory)
+        d.message += ", far more than any memory";
+    else
+        d.message +=
+            (geometryIsTheReason ? " whose picture's geometry would need about " : " (about ") +
+            formatBytes(bytes) + (geometryIsTheReason ? "" : ")") +
+            ", more than the memory limit of " + formatBytes(limit);
+    if (!obstacle.empty() && canStream) d.message += " (it cannot be streamed: " + obstacle + ")";
+    // Past a day of streaming the stream limit is no longer the point: only -n helps.
+    if (!overStreamLimit.empty() && expanded < kLongestStreamWorthSuggesting)
+        d.message += " (" + overStreamLimit + ")";
+    if (obstacle.empty() && !canStream && last <= streamLimit)
+        d.message += " (this output needs the whole scene; a 2D PNG could be streamed)";
+    d.remedies.push_back(Remedy::LowerSteps);
+    const double memory = physicalMemory();
+    if (bytes < kBeyondAnyMemory && (memory == 0 || bytes < memory))
+        d.remedies.push_back(Remedy::RaiseMemoryLimit);
+    if (!overStreamLimit.empty() && expanded < kLongestStreamWorthSuggesting)
+        d.remedies.push_back(Remedy::RaiseStreamLimit);
+    throw Error(std::move(d));
 }
 
 }  // namespace graftal

@@ -191,13 +191,14 @@ void RewritingEngine::checkLimit(int stepNumber, std::size_t modules, std::size_
                    static_cast<double>(extra);
     if (total > static_cast<double>(limit) || params > 0xFFFFFFFFull ||
         (needBrackets_ && modules > 0xFFFFFFFEull)) {
-        throw Error(SourceLocation{ls_.file, 0, 0},
-                    "derivation step " + std::to_string(stepNumber) + " would make a string of " +
-                        std::to_string(modules) + " modules (" + formatBytes(bytes) + ", " +
-                        formatBytes(total) +
-                        " with the previous step), more than the memory limit of " +
-                        formatBytes(static_cast<double>(limit)) +
-                        "; lower the derivation length (-n) or raise --memory-limit");
+        Diagnostic d{Severity::Error, SourceLocation{ls_.file, 0, 0},
+                     "derivation step " + std::to_string(stepNumber) + " would make a string of " +
+                         std::to_string(modules) + " modules (" + formatBytes(bytes) + ", " +
+                         formatBytes(total) +
+                         " with the previous step), more than the memory limit of " +
+                         formatBytes(static_cast<double>(limit))};
+        d.remedies = {Remedy::LowerSteps, Remedy::RaiseMemoryLimit};
+        throw Error(std::move(d));
     }
 }
 

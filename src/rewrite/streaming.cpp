@@ -61,6 +61,7 @@ void streamDerivation(const LSystem& ls, int steps, ModuleSink& sink,
     // A streamed derivation is one long step: the token is looked at every few thousand
     // expansions, often enough to stop within a millisecond, rarely enough to cost nothing.
     std::uint32_t expansions = 0;
+    std::uint64_t emitted = 0;
     while (true) {
         if (cursor[d] == level[d].size()) {
             if (d == 0) break;
@@ -72,6 +73,9 @@ void streamDerivation(const LSystem& ls, int steps, ModuleSink& sink,
         Symbol s = here.symbol(i);
         if (d == static_cast<std::size_t>(steps) || fixed[s]) {
             sink.module(s, here.params(i));
+            // Progress: the modules of the last string out so far, every million.
+            if ((++emitted & 0xFFFFFu) == 0 && options.progress)
+                options.progress(steps, static_cast<std::size_t>(emitted));
             if (random)
                 for (std::size_t k = d; k < level.size(); ++k) ++position[k];
             continue;

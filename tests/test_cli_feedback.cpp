@@ -1,0 +1,97 @@
+// What the command says while it works: warnings for settings a picture does not use, and
+// progress on a terminal.
+#include <gtest/gtest.h>
+
+#include "graftal/graftal.hpp"
+#include "process.hpp"
+#include "test_helpers.hpp"
+
+using graftal::testing::readFile;
+using graftal::testing::runGraftal;
+using graftal::testing::TempDir;
+
+namespace {
+
+const char* kKoch =
+    "Lsystem: 1\nangle factor: 4\nderivation length: 2\naxiom: F+F+F+F\n"
+    "F --> F+F-F-FF+F+F-F\nendlsystem\n";
+const char* kTree3D =
+    "Lsystem: 1\nangle increment: 30\nderivation length: 3\naxiom: A\n"
+    "A --> F[&A]/[&A]/[&A]\nendlsystem\n";
+
+// The terminal output of `command` run under a pseudo-terminal (script(1)).
+std::string underATerminal(const std::string& command, const TempDir& t) {
+    const auto log = t.path() / "typescript";
+    const std::string cmd =
+        "script -qfec \"" + command + "\" " + log.string() + " > /dev/null 2>&1 < /dev/null";
+    const int raw = std::system(cmd.c_str());
+    EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 0) << command;
+    return readFile(log);
+}
+
+}  // namespace
+
+TEST(CliFeedback, SettingsTheSceneDoesNotUseAreWarned) {
+    TempDir t;
+    auto koch = t.write("koch.l", kKoch);
+    auto tree = t.write("tree.l", kTree3D);
+    const std::string png = (t.path() / "p.png").string();
+    auto r = runGraftal("render " + koch.string() + " -o " + png +
+                        " --viewpoint 1,2,3 --fov 30 --spp 8 --tube-sides 5");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err,
+              "graftal: warning: the scene is 2D and drawn as line art; 3D settings are "
+              "ignored: --viewpoint, --fov, --spp, --tube-sides\n");
+    r = runGraftal("render " + koch.string() + " -o " + png + " --viewpoint 1,2,3 -q");
+    EXPECT_EQ(r.err, "");
+    r = runGraftal("render " + koch.string() + " -o " + png + " --line-width 2 --color red");
+    EXPECT_EQ(r.err, "") << "line settings are for line art";
+
+    r = runGraftal("render " + tree.string() + " -o " + png +
+                   " --size 64x64 --spp 1 --line-width 2 --color red --margin 0.1");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err,
+              "graftal: warning: the 3D scene is ray traced, without lines; line settings are "
+              "ignored: --line-width, --color, --margin\n");
+    r = runGraftal("render " + tree.string() + " -o " + (t.path() / "t.obj").string() +
+                   " --viewpoint 0,0,9");
+    EXPECT_NE(r.err.find("a 3D file holds no camera or light; these settings are ignored: "
+                         "--viewpoint"),
+              std::string::npos)
+        << r.err;
+    r = runGraftal("render " + tree.string() + " -o " + png + " --size 64x64 --viewpoint 0,0,9");
+    EXPECT_EQ(r.err, "") << "the camera of a ray-traced picture";
+    r = runGraftal("render " + tree.string() + " -o " + png + " --view front --viewpoint 0,0,9");
+    EXPECT_EQ(r.err,
+              "graftal: warning: the 3D scene is drawn as 2D line art; its 3D settings are "
+              "ignored: --viewpoint\n");
+
+    // The library names the request's fields.
+    graftal::RenderRequest request;
+    request.output = t.path() / "lib.png";
+    request.fieldOfView = 30;
+    graftal::RenderResult result = graftal::render(graftal::testing::parseModel(kKoch), request);
+    ASSERT_EQ(result.notes.size(), 1u);
+    EXPECT_EQ(result.notes[0].severity, graftal::Severity::Warning);
+    EXPECT_EQ(result.notes[0].fields, std::vector<std::string>{"fieldOfView"});
+    EXPECT_NE(result.notes[0].toString().find("ignored: fieldOfView"), std::string::npos);
+}
+
+TEST(CliFeedback, ALongRunShowsItsProgressOnATerminal) {
+    TempDir t;
+    // 124 million modules, streamed and counted: a second or two.
+    const std::string island = std::string(GRAFTAL_EXAMPLES_DIR) +
+                               "/fig2.2-quadratic-koch-island.l -n 8 --stream --no-geometry";
+    const std::string exe = GRAFTAL_EXE;
+    std::string said = underATerminal(exe + " stats " + island + " > /dev/null", t);
+    EXPECT_NE(said.find("\rgraftal: "), std::string::npos) << said;
+    EXPECT_NE(said.find("% (step 8 of 8)"), std::string::npos) << said;
+    EXPECT_NE(said.find("modules/s"), std::string::npos) << said;
+    EXPECT_NE(said.find(" left"), std::string::npos) << said;
+    // Quiet, or not on a terminal: nothing.
+    said = underATerminal(exe + " stats " + island + " -q > /dev/null", t);
+    EXPECT_EQ(said.find("modules/s"), std::string::npos) << said;
+    auto r = runGraftal("stats " + island);
+    EXPECT_EQ(r.status, 0);
+    EXPECT_EQ(r.err, "");
+}
