@@ -29,6 +29,8 @@ endif()
 
 # The packages of the lockfile, installed into the build folder (never the source tree).
 set(studio_src ${CMAKE_CURRENT_SOURCE_DIR}/studio)
+# The command below runs inside this folder, so it must exist before the first build.
+file(MAKE_DIRECTORY ${GRAFTAL_STUDIO_NODE})
 add_custom_command(
   OUTPUT ${GRAFTAL_STUDIO_NODE}/npm-ci.stamp
   COMMAND ${CMAKE_COMMAND} -E make_directory ${GRAFTAL_STUDIO_NODE}
