@@ -3,6 +3,7 @@
 #include <cstdlib>
 #include <iostream>
 
+#include "animate_command.hpp"
 #include "commands.hpp"
 #include "graftal/diagnostics.hpp"
 #include "graftal/file_format.hpp"
@@ -172,6 +173,9 @@ int main(int argc, char** argv) {
                      "draw turtle paths as B-splines with N points per segment (0: straight)")
         ->check(CLI::Range(0, 64));
 
+    graftal::cli::AnimateCommand animate(
+        app, [&](CLI::App& cmd) { addInputOptions(cmd, in, memoryLimit); });
+
     if (std::string problem = usageProblem(app, argc, argv); !problem.empty()) {
         std::cerr << "graftal: error: " << problem << "\n";
         return 2;
@@ -188,6 +192,7 @@ int main(int argc, char** argv) {
         if (!memoryLimit.empty()) in.memoryLimit = graftal::cli::parseByteSize(memoryLimit);
         if (*derive) return graftal::cli::runDerive(in, homomorphism);
         if (*stats) return graftal::cli::runStats(in, !noGeometry, predict);
+        if (animate.chosen()) return animate.run(in);
         if (!size.empty()) graftal::cli::parseImageSize(size, out.render.width, out.render.height);
         if (!background.empty()) out.render.background = graftal::cli::parseColor(background);
         out.backgroundGiven = !background.empty();
