@@ -94,12 +94,13 @@ done
 
 # Developmental figures as animations (graftal animate): one frame per step, the camera
 # fixed on the grown plant; the raceme and the fern declare their modules' ages and grow
-# between steps. Anabaena (Fig 1.4) draws nothing but its derivation and is left out.
+# between steps. Anabaena (Fig 1.4) draws nothing but its derivation, and the signals of
+# Fig 3.12 and 3.13 change no segment's drawing (reached and unreached segments look the
+# same), so they are left out.
 animations=(
     "fig3.7-lily-of-the-valley --fps 4 --hold 2"
     "fig3.9-lychnis-3d --fps 6 --hold 2"
-    "fig3.12-acropetal-signal --fps 4 --hold 2"
-    "fig3.13-basipetal-signal --fps 4 --hold 2"
+    "fig3.14a-acropetal-signal --fps 4 --hold 2"
     "fig3.14b-basipetal-flowering --fps 6 --hold 2"
     "fig3.15-mycelis-muralis --fps 4 --hold 2"
     "fig4.5-cordate-leaf --fps 4 --hold 2"
