@@ -13,6 +13,7 @@ extern "C" {
 #include <algorithm>
 #include <filesystem>
 #include <set>
+#include <sstream>
 
 #include "graftal/graftal.hpp"
 #include "process.hpp"
@@ -397,4 +398,31 @@ TEST(Animation, AgeDeclarationsNameOneParameter) {
     EXPECT_EQ(m.lsystem.ages[0].parameter, 1u);
     EXPECT_EQ(m.lsystem.ages[1].symbol, Symbol('I'));
     EXPECT_EQ(m.lsystem.ages[1].parameter, 0u);
+    // Printed back as the language writes it, and read again to the same declarations.
+    std::ostringstream printed;
+    m.lsystem.print(printed);
+    EXPECT_NE(printed.str().find("age: F(_, a)\nage: I(a)\n"), std::string::npos)
+        << printed.str();
+    EXPECT_EQ(parseModel(printed.str()).lsystem.ages.size(), 2u);
+}
+
+TEST(Animation, RayTracedGifsAreQuantisedWithOrWithoutDithering) {
+    TempDir dir;
+    Model lychnis = loadExample(example("fig3.9-lychnis-3d.l"));
+    AnimationRequest request = smallRequest(128);
+    request.samplesPerPixel = 4;  // shading and antialiasing: far more than 256 colours
+    request.from = 5;
+    request.to = 6;
+    for (bool dither : {false, true}) {
+        request.dither = dither;
+        request.output = dir.path() / (dither ? "dithered.gif" : "plain.gif");
+        writeAnimationFile(lychnis, request);
+        const DecodedGif gif = decodeGif(request.output);
+        ASSERT_EQ(gif.frames.size(), 2u);
+        // A ray-traced plant has more than two colours, and the background stays white.
+        std::set<std::uint32_t> colours(gif.frames[1].begin(), gif.frames[1].end());
+        EXPECT_GT(colours.size(), 8u);
+        EXPECT_EQ(gif.frames[1][0], 0xFFFFFFu);
+    }
+    EXPECT_NE(readFile(dir.path() / "plain.gif"), readFile(dir.path() / "dithered.gif"));
 }

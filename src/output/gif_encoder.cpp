@@ -124,6 +124,7 @@ ChosenPalette choosePalette(const std::vector<std::pair<const RgbaImage*, Rect>>
     for (const auto& [image, r] : images) total += std::size_t(r.width) * r.height;
     const std::size_t stride = std::max<std::size_t>(1, total / 2'000'000);
     std::vector<GifByteType> red, green, blue;
+    std::unordered_map<std::uint32_t, std::size_t> frequency;
     std::size_t n = 0;
     for (const auto& [image, r] : images)
         for (int y = r.y; y < r.y + r.height; ++y)
@@ -133,6 +134,7 @@ ChosenPalette choosePalette(const std::vector<std::pair<const RgbaImage*, Rect>>
                     red.push_back(p[0]);
                     green.push_back(p[1]);
                     blue.push_back(p[2]);
+                    ++frequency[rgbKey(p)];
                 }
     std::vector<GifByteType> indices(red.size());
     palette.resize(256);
@@ -141,6 +143,17 @@ ChosenPalette choosePalette(const std::vector<std::pair<const RgbaImage*, Rect>>
                           indices.data(), palette.data()) == GIF_ERROR)
         throw Error(SourceLocation{"graftal", 0, 0}, "GIF: colour quantisation failed");
     palette.resize(std::size_t(std::clamp(size, 1, 256)));
+    // The median cut averages its boxes, so the background would come out a shade off
+    // white; the most frequent colour (the background) keeps its exact value instead.
+    const auto common =
+        std::max_element(frequency.begin(), frequency.end(),
+                         [](const auto& a, const auto& b) { return a.second < b.second; });
+    if (common != frequency.end()) {
+        const GifColorType exact{GifByteType(common->first >> 16), GifByteType(common->first >> 8),
+                                 GifByteType(common->first)};
+        ColorIndex nearest(palette);
+        palette[nearest(exact.Red, exact.Green, exact.Blue)] = exact;
+    }
     return {palette, false};
 }
 
