@@ -308,6 +308,10 @@ TEST(Animation, BadOptionsAreClearErrorsAndLeaveNoFile) {
     r = runGraftal("animate " + bush.string() + " -o " + (dir.path() / "no/such/a.gif").string());
     EXPECT_EQ(r.status, 1);
     EXPECT_NE(r.err.find("does not exist"), std::string::npos) << r.err;
+    // A "folder" that is a file cannot take the output either.
+    r = runGraftal("animate " + bush.string() + " -o " + (bush / "a.gif").string());
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("is not a directory"), std::string::npos) << r.err;
     r = runGraftal("animate " + bush.string() + " -o " + out + " --fps 0");
     EXPECT_EQ(r.status, 1);
     EXPECT_NE(r.err.find("--fps"), std::string::npos) << r.err;
