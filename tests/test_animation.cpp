@@ -405,8 +405,7 @@ TEST(Animation, AgeDeclarationsNameOneParameter) {
     // Printed back as the language writes it, and read again to the same declarations.
     std::ostringstream printed;
     m.lsystem.print(printed);
-    EXPECT_NE(printed.str().find("age: F(_, a)\nage: I(a)\n"), std::string::npos)
-        << printed.str();
+    EXPECT_NE(printed.str().find("age: F(_, a)\nage: I(a)\n"), std::string::npos) << printed.str();
     EXPECT_EQ(parseModel(printed.str()).lsystem.ages.size(), 2u);
 }
 

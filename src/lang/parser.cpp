@@ -629,7 +629,8 @@ void Parser::parseAges(const SourceLine& line, std::size_t valueStart) {
                          diags_))
         return;
     if (toks.empty()) {
-        diags_.error(loc, "expected modules with their age parameter after 'age:', e.g. 'age: I(i)'");
+        diags_.error(loc,
+                     "expected modules with their age parameter after 'age:', e.g. 'age: I(i)'");
         return;
     }
     for (const auto& t : toks) {

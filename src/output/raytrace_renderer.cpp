@@ -24,8 +24,8 @@
 
 #include "core/random_stream.hpp"
 #include "graftal/diagnostics.hpp"
-#include "graftal/output.hpp"
 #include "graftal/framed_picture.hpp"
+#include "graftal/output.hpp"
 #include "graftal/render3d.hpp"
 
 namespace graftal {
