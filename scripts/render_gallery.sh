@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Renders every examples/*.l to OUTDIR/<name>.png (800x800) and writes OUTDIR/index.md,
-# a markdown table of thumbnails with the figure names.
+# Renders every examples/*.l to OUTDIR/<name>.png (800x800), the developmental figures
+# also to OUTDIR/<name>.gif (animations), and writes OUTDIR/index.md, a markdown table of
+# thumbnails with the figure names.
 #
 #   scripts/render_gallery.sh GRAFTAL_EXE OUTDIR
 #
@@ -110,6 +111,52 @@ for file in "$examples"/fig6.9-*music*.l "$examples"/sec6.3-*.l; do
             failed=$((failed + 1))
         fi
     done
+done
+
+# Developmental figures as animations (graftal animate): one frame per step, the camera
+# fixed on the grown plant; the raceme and the fern declare their modules' ages and grow
+# between steps. Anabaena (Fig 1.4) draws nothing but its derivation, and the signals of
+# Fig 3.12 and 3.13 change no segment's drawing (reached and unreached segments look the
+# same), so they are left out.
+animations=(
+    "fig3.7-lily-of-the-valley --fps 4 --hold 2"
+    "fig3.9-lychnis-3d --fps 6 --hold 2"
+    "fig3.14a-acropetal-signal --fps 4 --hold 2"
+    "fig3.14b-basipetal-flowering --fps 6 --hold 2"
+    "fig3.15-mycelis-muralis --fps 4 --hold 2"
+    "fig4.5-cordate-leaf --fps 4 --hold 2"
+    "fig6.2-snake-kolam --fps 3 --hold 2"
+    "siggraph-raceme-elongating-internodes --frames-per-step 4 --fps 16 --hold 2"
+    "fig3.8-fern --frames-per-step 4 --fps 16 --hold 2"
+)
+{
+    echo
+    echo "## Development"
+    echo
+    echo "Developmental figures drawn step by step by \`graftal animate\` (400x400 GIFs; the"
+    echo "raceme and the fern grow between steps from their declared module ages)."
+    echo
+    echo "| animation | figure | command |"
+    echo "| --- | --- | --- |"
+} >> "$index.tmp"
+for entry in "${animations[@]}"; do
+    read -r name options <<< "$entry"
+    file="$examples/$name.l"
+    out="$outdir/$name.gif"
+    [ -f "$file" ] || continue
+    start=${EPOCHREALTIME:-0}
+    # shellcheck disable=SC2086  # the options are words
+    if msg=$("$exe" animate "$file" -o "$out" --size 400x400 $options 2>&1) && [ -s "$out" ]; then
+        end=${EPOCHREALTIME:-0}
+        printf 'ok    %-40s -> %s (%s s)\n' "$name.l" "$out" \
+            "$(awk -v a="$start" -v b="$end" 'BEGIN { printf "%.2f", b - a }')"
+        rendered=$((rendered + 1))
+        printf '| [<img src="%s.gif" width="160" alt="%s">](%s.gif) | %s | `graftal animate examples/%s.l %s` |\n' \
+            "$name" "$name" "$name" "$(caption "$file" "$name")" "$name" "$options" >> "$index.tmp"
+    else
+        printf 'FAIL  %-40s %s\n' "$name.l" "$(printf '%s' "$msg" | head -n 3 | tr '\n' ' ')"
+        failed=$((failed + 1))
+    fi
 done
 mv "$index.tmp" "$index"
 

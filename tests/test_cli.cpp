@@ -192,8 +192,7 @@ TEST(Cli, UsageMistakesNameWhatWasTypedAndWhatWasExpected) {
     for (const Case& c : std::vector<Case>{
              {"frobnicate " + f.string(),
               "graftal: error: unknown subcommand 'frobnicate' (subcommands: derive, stats, "
-              "render, music, studio)
-"},
+              "render, music, studio, animate)\n"},
              {"render -x 3 " + f.string() + " -o k.png",
               "graftal: error: unknown option '-x' for render (see graftal render --help)\n"},
              {"derive -n abc " + f.string(),

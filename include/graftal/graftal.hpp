@@ -1,6 +1,8 @@
 // The public API of graftal: text -> LSystem -> module string -> geometry -> output.
 #pragma once
 
+#include "graftal/animation.hpp"
+#include "graftal/animation_file.hpp"
 #include "graftal/atomic_file.hpp"
 #include "graftal/bspline.hpp"
 #include "graftal/cancellation.hpp"
@@ -12,6 +14,7 @@
 #include "graftal/environment_line.hpp"
 #include "graftal/expression.hpp"
 #include "graftal/file_format.hpp"
+#include "graftal/framed_picture.hpp"
 #include "graftal/growth.hpp"
 #include "graftal/lsystem.hpp"
 #include "graftal/mesh.hpp"

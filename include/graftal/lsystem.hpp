@@ -82,6 +82,16 @@ struct ScheduleEntry {
 
 struct ViewSettings;  // view_settings.hpp
 
+// `age: I(i)`: parameter `parameter` of every `symbol` module is its age, which grows by
+// one per derivation step. Between steps an animation draws the module at fractional ages
+// (its homomorphism production, evaluated at the fractional age, is its growth function).
+struct ModuleAge {
+    Symbol symbol = 0;
+    std::uint32_t parameter = 0;  // from 0
+    std::uint32_t parameterCount = 1;
+    SourceLocation location;
+};
+
 class LSystem {
   public:
     std::string name;  // the `Lsystem:` label (the file name if none)
@@ -124,6 +134,7 @@ class LSystem {
         Expression value;
     };
     std::vector<DeferredArgument> axiomArguments;
+    std::vector<ModuleAge> ages;  // `age:` declarations, in file order
 
     // The table used by derivation step `step` (1-based); 0 when there are no tables.
     int tableForStep(int step) const;

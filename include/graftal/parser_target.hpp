@@ -95,6 +95,8 @@ class ParserTarget {
     virtual void viewSetting(const ViewSetting& setting) = 0;
     // Everything is read; `last` is the last line, for checks over the whole model.
     virtual void endOfInput(const SourceLocation& last) = 0;
+    // `age: I(i)`: which parameter of a module is its age (continuous development).
+    virtual void moduleAge(const ModuleAge& age) { (void)age; }
 };
 
 // The standard target: builds a Model, reporting what it rejects to `diagnostics`.
@@ -128,6 +130,7 @@ class ModelBuilder : public ParserTarget {
     void environmentLine(EnvironmentLine line) override;
     void viewSetting(const ViewSetting& setting) override;
     void endOfInput(const SourceLocation& last) override;
+    void moduleAge(const ModuleAge& age) override;
 
   private:
     void warnShadowedProductions();

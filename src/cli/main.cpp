@@ -3,6 +3,7 @@
 #include <cstdlib>
 #include <iostream>
 
+#include "animate_command.hpp"
 #include "commands.hpp"
 #include "graftal/diagnostics.hpp"
 #include "graftal/file_format.hpp"
@@ -201,6 +202,9 @@ int main(int argc, char** argv) {
     graftal::cli::StudioCommandOptions studio;
     graftal::cli::addStudioCommand(app, studio);
 
+    graftal::cli::AnimateCommand animate(
+        app, [&](CLI::App& cmd) { addInputOptions(cmd, in, memoryLimit); });
+
     if (std::string problem = usageProblem(app, argc, argv); !problem.empty()) {
         std::cerr << "graftal: error: " << problem << "\n";
         return 2;
@@ -223,6 +227,7 @@ int main(int argc, char** argv) {
                                                : graftal::cli::DeriveFormat::Text);
         if (*stats) return graftal::cli::runStats(in, !noGeometry, predict);
         if (*music) return graftal::cli::runMusic(in, musicOut);
+        if (animate.chosen()) return animate.run(in);
         if (!size.empty()) graftal::cli::parseImageSize(size, out.render.width, out.render.height);
         if (!background.empty()) out.render.background = graftal::cli::parseColor(background);
         out.backgroundGiven = !background.empty();

@@ -138,6 +138,12 @@ void LSystem::print(std::ostream& os, const ViewSettings* view) const {
     for (std::size_t s = 0; s < symbols.size(); ++s)
         if (ignored[s] && s > 32 && s != 127) ign += symbols.name(static_cast<Symbol>(s));
     if (!ign.empty()) os << "ignore: " << ign << '\n';
+    for (const ModuleAge& a : ages) {
+        os << "age: " << symbols.name(a.symbol) << '(';
+        for (std::uint32_t k = 0; k < a.parameterCount; ++k)
+            os << (k ? ", " : "") << (k == a.parameter ? "a" : "_");
+        os << ")\n";
+    }
     int table = -1;
     for (const auto& p : productions) {
         if (p.table != table && p.table >= 0) os << "table: " << tableNames[p.table] << '\n';

@@ -95,6 +95,17 @@ void ModelBuilder::derivationLength(int steps, const SourceLocation&) {
     model_.lsystem.derivationLength = steps;
 }
 
+void ModelBuilder::moduleAge(const ModuleAge& age) {
+    for (const ModuleAge& a : model_.lsystem.ages)
+        if (a.symbol == age.symbol) {
+            diags_.error(age.location, "the age of '" + model_.lsystem.symbols.name(age.symbol) +
+                                           "' is declared twice (first on line " +
+                                           std::to_string(a.location.line) + ")");
+            return;
+        }
+    model_.lsystem.ages.push_back(age);
+}
+
 void ModelBuilder::seed(std::uint64_t seed, const SourceLocation&) {
     model_.lsystem.seed = seed;
 }

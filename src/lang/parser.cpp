@@ -46,6 +46,7 @@ const std::vector<std::string> kKeywords = {
     "axiom",
     "ignore",
     "consider",
+    "age",
     "angle factor",
     "angle increment",
     "scale factor",
@@ -410,6 +411,8 @@ void Parser::parseDirective(const SourceLine& line, const std::string& kw, std::
         parseAxiom(line, valueStart);
     } else if (kw == "ignore" || kw == "consider") {
         parseIgnore(line, kw, valueStart);
+    } else if (kw == "age") {
+        parseAges(line, valueStart);
     } else if (kw == "maximum depth") {
         if (!constantValue(line, valueStart, v)) return;
         if (section_ == Section::Main) {
@@ -622,6 +625,41 @@ void Parser::parseIgnore(const SourceLine& line, const std::string& kw, std::siz
     std::vector<Symbol> listed;
     for (const auto& t : toks) listed.push_back(t.symbol);
     target_.ignore(listed, kw == "consider", loc);
+}
+
+// age: I(i) L(i) F(_, a): the one named parameter of each module is its age; the others
+// are written _.
+void Parser::parseAges(const SourceLine& line, std::size_t valueStart) {
+    std::string_view value = std::string_view(line.text).substr(valueStart);
+    SourceLocation loc = at(line, valueStart);
+    std::vector<ModuleToken> toks;
+    if (!tokenizeModules(value, loc, static_cast<int>(valueStart) + 1, target_.symbols(), toks,
+                         diags_))
+        return;
+    if (toks.empty()) {
+        diags_.error(loc,
+                     "expected modules with their age parameter after 'age:', e.g. 'age: I(i)'");
+        return;
+    }
+    for (const auto& t : toks) {
+        const SourceLocation where = src_.at(line.number, t.column);
+        const std::string name = target_.symbols().name(t.symbol);
+        int age = -1, named = 0;
+        for (std::size_t k = 0; k < t.args.size(); ++k) {
+            const std::string arg(trimView(t.args[k].text));
+            if (arg == "_") continue;
+            ++named;
+            age = static_cast<int>(k);
+        }
+        if (!t.hasParens || named != 1) {
+            diags_.error(where, "'age:' names one parameter of '" + name + "' as its age: write " +
+                                    name + "(a), or " + name +
+                                    "(_, a) with _ for the other parameters");
+            return;
+        }
+        target_.moduleAge(ModuleAge{t.symbol, static_cast<std::uint32_t>(age),
+                                    static_cast<std::uint32_t>(t.args.size()), where});
+    }
 }
 
 bool Parser::isGlobalBlockKeyword(const std::string& kw) {

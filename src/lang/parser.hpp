@@ -82,6 +82,7 @@ class Parser {
     static bool isGlobalBlockKeyword(const std::string& kw);
 
     void parseIgnore(const SourceLine& line, const std::string& kw, std::size_t valueStart);
+    void parseAges(const SourceLine& line, std::size_t valueStart);
 
     // View settings for 3D pictures (view_parser.cpp).
     bool parseViewSetting(const SourceLine& line, const std::string& kw, std::size_t valueStart);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "graftal/diagnostics.hpp"
+#include "graftal/framed_picture.hpp"
 #include "graftal/output.hpp"
 #include "stroke_order.hpp"
 
@@ -117,9 +118,10 @@ void strokeSegments(cairo_t* cr, const Scene& scene, const RenderOptions& o,
     if (inPath > 0) cairo_stroke(cr);
 }
 
-// Draws the whole picture in a width x height user space (pixels or points).
-void drawScene(cairo_t* cr, const Scene& scene, const RenderOptions& o) {
-    const ImageTransform t = ImageTransform::fit(scene.bounds(), o);
+// Draws the whole picture in a width x height user space (pixels or points), with `frame`
+// fitted into it.
+void drawScene(cairo_t* cr, const Scene& scene, const RenderOptions& o, const Bounds& frame) {
+    const ImageTransform t = ImageTransform::fit(frame, o);
     cairo_set_antialias(cr, o.antialias ? CAIRO_ANTIALIAS_DEFAULT : CAIRO_ANTIALIAS_NONE);
     setSource(cr, o.background);
     cairo_paint(cr);
@@ -141,7 +143,7 @@ void writePng(const Scene& scene, const RenderOptions& o, const std::filesystem:
                          st);
     {
         ContextPtr cr(cairo_create(surface.get()), &cairo_destroy);
-        drawScene(cr.get(), scene, o);
+        drawScene(cr.get(), scene, o, scene.bounds());
         if (auto st = cairo_status(cr.get()); st != CAIRO_STATUS_SUCCESS)
             throw cairoError(path, "cannot draw the picture", st);
     }
@@ -149,6 +151,40 @@ void writePng(const Scene& scene, const RenderOptions& o, const std::filesystem:
     if (auto st = cairo_surface_write_to_png(surface.get(), path.c_str());
         st != CAIRO_STATUS_SUCCESS)
         throw cairoError(path, "cannot write PNG", st);
+}
+
+RgbaImage drawLineArt(const Scene& scene, const RenderOptions& o, const Bounds& frame) {
+    const std::filesystem::path memory("image in memory");
+    checkSize(o, memory, kMaxPixelSize);
+    SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, o.width, o.height),
+                       &cairo_surface_destroy);
+    if (auto st = cairo_surface_status(surface.get()); st != CAIRO_STATUS_SUCCESS)
+        throw cairoError(memory,
+                         "cannot create a " + std::to_string(o.width) + "x" +
+                             std::to_string(o.height) + " image",
+                         st);
+    {
+        ContextPtr cr(cairo_create(surface.get()), &cairo_destroy);
+        drawScene(cr.get(), scene, o, frame);
+        if (auto st = cairo_status(cr.get()); st != CAIRO_STATUS_SUCCESS)
+            throw cairoError(memory, "cannot draw the picture", st);
+    }
+    cairo_surface_flush(surface.get());
+    RgbaImage image(o.width, o.height);
+    const unsigned char* data = cairo_image_surface_get_data(surface.get());
+    const int stride = cairo_image_surface_get_stride(surface.get());
+    for (int y = 0; y < o.height; ++y) {
+        // The background is opaque, so no pixel needs un-premultiplying.
+        const auto* row = reinterpret_cast<const std::uint32_t*>(data + std::size_t(y) * stride);
+        std::uint8_t* out = &image.pixels[std::size_t(y) * o.width * 4];
+        for (int x = 0; x < o.width; ++x) {
+            out[4 * x] = std::uint8_t(row[x] >> 16);
+            out[4 * x + 1] = std::uint8_t(row[x] >> 8);
+            out[4 * x + 2] = std::uint8_t(row[x]);
+            out[4 * x + 3] = std::uint8_t(row[x] >> 24);
+        }
+    }
+    return image;
 }
 
 void writePdf(const Scene& scene, const RenderOptions& o, const std::filesystem::path& path) {
@@ -161,7 +197,7 @@ void writePdf(const Scene& scene, const RenderOptions& o, const std::filesystem:
     cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATOR, "graftal");
     {
         ContextPtr cr(cairo_create(surface.get()), &cairo_destroy);
-        drawScene(cr.get(), scene, o);
+        drawScene(cr.get(), scene, o, scene.bounds());
         cairo_show_page(cr.get());
         if (auto st = cairo_status(cr.get()); st != CAIRO_STATUS_SUCCESS)
             throw cairoError(path, "cannot draw the picture", st);

@@ -24,6 +24,7 @@
 
 #include "core/random_stream.hpp"
 #include "graftal/diagnostics.hpp"
+#include "graftal/framed_picture.hpp"
 #include "graftal/output.hpp"
 #include "graftal/render3d.hpp"
 
@@ -178,7 +179,9 @@ Vec3 frontDirection(Vec3 up) {
     return unitOrZero(front);
 }
 
-View makeView(const Camera& c, const Bounds& bounds, int width, int height) {
+}  // namespace
+
+Camera framedCamera(const Camera& c, const Bounds& bounds, int width, int height) {
     const Vec3 worldUp = unitOrZero(c.up);
     const double aspect = static_cast<double>(width) / height;
     const double tanHalfV = std::tan(c.fieldOfView * std::numbers::pi / 360);
@@ -188,11 +191,10 @@ View makeView(const Camera& c, const Bounds& bounds, int width, int height) {
         lo = bounds.min;
         hi = bounds.max;
     }
+    Camera framed = c;
     const Vec3 target = c.target ? *c.target : (lo + hi) * 0.5;
-    Vec3 eye;
-    if (c.viewpoint) {
-        eye = *c.viewpoint;
-    } else {
+    framed.target = target;
+    if (!c.viewpoint) {
         // The sphere around the target that holds the whole box (the box's own bounding
         // sphere when the target is its centre) is framed: seen from distance d it spans
         // the half-angle asin(r / d), whose tangent is its outline's radius in the picture
@@ -207,8 +209,20 @@ View makeView(const Camera& c, const Bounds& bounds, int width, int height) {
         const Vec3 direction =
             frontDirection(worldUp) * std::cos(elevation) + worldUp * std::sin(elevation);
         const double halfAngle = std::atan(kFrameFill * tanHalfV * std::min(1.0, aspect));
-        eye = target + direction * (radius / std::sin(halfAngle));
+        framed.viewpoint = target + direction * (radius / std::sin(halfAngle));
     }
+    return framed;
+}
+
+namespace {
+
+View makeView(const Camera& camera, const Bounds& bounds, int width, int height) {
+    const Camera c = framedCamera(camera, bounds, width, height);
+    const Vec3 worldUp = unitOrZero(c.up);
+    const double aspect = static_cast<double>(width) / height;
+    const double tanHalfV = std::tan(c.fieldOfView * std::numbers::pi / 360);
+    const Vec3 target = *c.target;
+    const Vec3 eye = *c.viewpoint;
 
     const Vec3 toTarget = target - eye;
     const double distance = length(toTarget);

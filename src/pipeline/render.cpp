@@ -15,6 +15,7 @@
 #include "graftal/streamed_picture.hpp"
 #include "graftal/surface.hpp"
 #include "graftal/turtle.hpp"
+#include "pipeline/render_settings.hpp"
 
 namespace graftal {
 
@@ -24,6 +25,9 @@ Error requestError(const std::string& message) {
     return Error(SourceLocation{"graftal", 0, 0}, message);
 }
 
+}  // namespace
+
+// The settings render() and the animations share (render_settings.hpp).
 std::filesystem::path sourceFolder(const Model& model, const RenderRequest& request) {
     const std::filesystem::path file =
         request.sourceFile.empty() ? std::filesystem::path(model.lsystem.file) : request.sourceFile;
@@ -97,6 +101,8 @@ RenderOptions lineArtOptions(const Model& model, const RenderRequest& request) {
         render.background = *model.view.background;
     return render;
 }
+
+namespace {
 
 // The derivation as a diagram: the axiom and the string after every step.
 void renderDerivation(const Model& model, int steps, const RenderRequest& request) {
