@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "map_commands.hpp"
 #include "graftal/diagnostics.hpp"
 #include "graftal/file_format.hpp"
 
@@ -128,10 +129,13 @@ int main(int argc, char** argv) {
 
     auto* derive = app.add_subcommand("derive", "print the derived module string");
     addInputOptions(*derive, in, memoryLimit);
+    graftal::cli::MapOptions mapOptions;
+    graftal::cli::addMapOptions(*derive, mapOptions, false);
     derive->add_flag("--homo", homomorphism, "print the string after the homomorphism");
 
     auto* stats = app.add_subcommand("stats", "print counts and bounds as JSON");
     addInputOptions(*stats, in, memoryLimit);
+    graftal::cli::addMapOptions(*stats, mapOptions, false);
     stats->add_flag("--no-geometry", noGeometry, "derive and count only, no turtle");
     stats->add_flag("--predict", predict,
                     "module counts per step from the productions, without deriving");
@@ -142,6 +146,7 @@ int main(int argc, char** argv) {
                       ") or 3D files (" +
                       graftal::extensionList(graftal::FormatKind::Mesh, " ", " ") + ")");
     addInputOptions(*render, in, memoryLimit);
+    graftal::cli::addMapOptions(*render, mapOptions, true);
     render
         ->add_option("-o,--output", out.output,
                      "output file: " + graftal::extensionList(std::nullopt, " ", " "))
@@ -186,6 +191,9 @@ int main(int argc, char** argv) {
 
     try {
         if (!memoryLimit.empty()) in.memoryLimit = graftal::cli::parseByteSize(memoryLimit);
+        const bool map = graftal::cli::isMapInput(in);
+        if (*derive && map) return graftal::cli::runMapDerive(in, mapOptions);
+        if (*stats && map) return graftal::cli::runMapStats(in, mapOptions);
         if (*derive) return graftal::cli::runDerive(in, homomorphism);
         if (*stats) return graftal::cli::runStats(in, !noGeometry, predict);
         if (!size.empty()) graftal::cli::parseImageSize(size, out.render.width, out.render.height);
@@ -196,6 +204,7 @@ int main(int argc, char** argv) {
         if (!up.empty()) out.up = graftal::cli::parseVector("--up", up);
         if (!light.empty()) out.light = graftal::cli::parseVector("--light", light);
         if (!color.empty()) out.render.lineColor = graftal::cli::parseColor(color);
+        if (map) return graftal::cli::runMapRender(in, out, mapOptions);
         return graftal::cli::runRender(in, out);
     } catch (const graftal::Error& e) {
         for (const auto& d : e.diagnostics()) std::cerr << d.toString() << '\n';
