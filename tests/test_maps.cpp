@@ -318,13 +318,27 @@ TEST(MapGeometry, RelaxedMapsHaveNoCrossingWallsAndKeepTheirOutline) {
             const double cross = (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
             EXPECT_NEAR(cross, 0, 1e-9);
         }
-        // Settled: one more relaxation hardly moves anything.
-        PlaneMap again = m;
-        o.relaxIterations = 1;
-        relaxMap(again, o);
-        o.relaxIterations = 5000;
-        for (std::size_t v = 0; v < m.vertexCount(); ++v)
-            EXPECT_NEAR(again.position[v].x, m.position[v].x, 1e-6);
+        // Settled: every interior vertex is at the centre of gravity of its neighbours.
+        MapDerivationOptions tight = o;
+        tight.relaxTolerance = 1e-10;
+        PlaneMap settled = deriveMap(s, steps, tight);
+        std::vector<Vec3> sum(settled.vertexCount(), Vec3{0, 0, 0});
+        std::vector<int> degree(settled.vertexCount(), 0);
+        for (std::size_t e = 0; e < settled.edgeCount(); ++e) {
+            sum[settled.tail[e]] = sum[settled.tail[e]] + settled.position[settled.head[e]];
+            sum[settled.head[e]] = sum[settled.head[e]] + settled.position[settled.tail[e]];
+            ++degree[settled.tail[e]];
+            ++degree[settled.head[e]];
+        }
+        for (std::size_t v = 0; v < settled.vertexCount(); ++v) {
+            if (settled.vertexSide[v] != kNotOnOutline) continue;
+            const Vec3 c = sum[v] * (1.0 / degree[v]);
+            EXPECT_NEAR(c.x, settled.position[v].x, 1e-8);
+            EXPECT_NEAR(c.y, settled.position[v].y, 1e-8);
+            // The default tolerance leaves vertices within a small fraction of a wall.
+            EXPECT_NEAR(m.position[v].x, settled.position[v].x, 1e-3);
+            EXPECT_NEAR(m.position[v].y, settled.position[v].y, 1e-3);
+        }
     }
 }
 

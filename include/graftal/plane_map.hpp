@@ -73,11 +73,15 @@ enum class MapGeometry {
 struct MapDerivationOptions {
     MapGeometry geometry = MapGeometry::Siero;
     unsigned threads = 0;  // 0: all cores; the result never depends on it
-    // Relaxation: conjugate-gradient iterations per step at most, and the force left on
-    // the vertices (the root of the sum of the squared sums of their wall vectors, the
-    // axiom's circumradius being 1) below which the layer counts as settled.
+    // Relaxation: conjugate-gradient iterations per step at most, and the root-mean-square
+    // force left on a vertex (the sum of its wall vectors), relative to the mean wall
+    // length, below which the layer counts as settled.
     int relaxIterations = 5000;
-    double relaxTolerance = 1e-9;
+    // deriveMap settles the steps before the last only this far: the equilibrium depends on
+    // the map alone, not on where its vertices were born, so the earlier steps only give
+    // the last one a good start.
+    double relaxStartTolerance = 3e-2;
+    double relaxTolerance = 1e-3;
 };
 
 // Counts of what phase two did in one step.

@@ -56,14 +56,17 @@ MapDerivationOptions derivationOptions(const InputOptions& in, const MapOptions&
 struct DerivedMap {
     PlaneMap map;
     MapStepReport last;
+    long long relaxIterations = 0;  // over all steps
 };
 
 DerivedMap derive(const InputOptions& in, const MapOptions& options) {
     MapDerivationOptions o = derivationOptions(in, options);  // option errors first
     LoadedMap l = loadMap(in);
     DerivedMap d;
-    d.map = deriveMap(l.system, l.steps, o,
-                      [&](const PlaneMap&, const MapStepReport& r) { d.last = r; });
+    d.map = deriveMap(l.system, l.steps, o, [&](const PlaneMap&, const MapStepReport& r) {
+        d.last = r;
+        d.relaxIterations += r.relaxIterations;
+    });
     return d;
 }
 
@@ -108,6 +111,7 @@ int runMapStats(const InputOptions& in, const MapOptions& map) {
                      {"discarded", d.last.discarded},
                      {"crossing", d.last.crossing},
                      {"outside", d.last.outside}};
+    if (map.geometry != "siero") j["relaxation iterations"] = d.relaxIterations;
     Bounds b;
     for (const Vec3& p : m.position) b.extend(p);
     if (b.empty()) b.extend(Vec3{});

@@ -309,9 +309,11 @@ PlaneMap deriveMapStep(const PlaneMap& old, const MapLSystem& sys,
 PlaneMap deriveMap(const MapLSystem& sys, int steps, const MapDerivationOptions& options,
                    const std::function<void(const PlaneMap&, const MapStepReport&)>& perStep) {
     PlaneMap m = axiomMap(sys);
+    MapDerivationOptions early = options;
+    early.relaxTolerance = std::max(options.relaxTolerance, options.relaxStartTolerance);
     for (int s = 0; s < steps; ++s) {
         MapStepReport rep;
-        m = deriveMapStep(m, sys, options, &rep);
+        m = deriveMapStep(m, sys, s + 1 == steps ? options : early, &rep);
         if (perStep) perStep(m, rep);
     }
     return m;

@@ -1,9 +1,9 @@
 // The de Does and Lindenmayer interpretation: vertices settle where the walls pulling on
 // them balance. At equilibrium every interior vertex is the centre of gravity of its
 // neighbours, a linear system (the graph Laplacian of the interior vertices, with the
-// outline fixed) that is solved by conjugate gradients instead of by iterating the
-// averaging itself: the averaging needs about as many iterations as the layer has cells
-// across, squared; conjugate gradients about as many as it has cells across.
+// outline fixed) that is solved by conjugate gradients (preconditioned by the vertex degrees)
+// instead of by iterating the averaging itself: the averaging needs about as many iterations as the
+// layer has cells across, squared; conjugate gradients about as many as it has cells across.
 //
 // Every sum is formed per block of a fixed number of vertices and the blocks' sums are
 // added in block order, so the result is the same bit for bit for any number of threads.
@@ -105,38 +105,49 @@ int relaxMap(PlaneMap& map, const MapDerivationOptions& options) {
         return std::pair{k * kBlock, std::min(n, (k + 1) * kBlock)};
     };
 
-    std::vector<XY> x(n), r(n), p(n), q(n), rhs(n, XY{});
-    std::vector<double> partial(blocks);
-    auto sumPartials = [&] {
+    std::vector<XY> x(n), r(n), p(n), q(n);
+    std::vector<double> partial(blocks), partial2(blocks);
+    auto sumPartials = [](const std::vector<double>& parts) {
         double s = 0;
-        for (double v : partial) s += v;
+        for (double v : parts) s += v;
         return s;
     };
     for (std::size_t i = 0; i < n; ++i)
         x[i] = {map.position[vertexOf[i]].x, map.position[vertexOf[i]].y};
-    // r = b - A x, with b the pull of the outline neighbours.
+    // r = b - A x, with b the pull of the outline neighbours; z = r / degree (the diagonal
+    // preconditioner: vertices differ in degree from 2 to 10 and more).
     forEachBlock(blocks, workers, [&](std::size_t k) {
         auto [b, e] = blockRange(k);
-        double rr = 0;
+        double rz = 0, rr = 0;
         for (std::size_t i = b; i < e; ++i) {
             XY acc{0, 0};
             const double degree = static_cast<double>(start[i + 1] - start[i]);
             for (std::uint32_t s = start[i]; s < start[i + 1]; ++s) {
-                const std::uint32_t u = neighbour[s];
-                const Vec3& pu = map.position[u];
+                const Vec3& pu = map.position[neighbour[s]];
                 acc.x += pu.x;
                 acc.y += pu.y;
             }
             r[i] = {acc.x - degree * x[i].x, acc.y - degree * x[i].y};
-            p[i] = r[i];
+            p[i] = {r[i].x / degree, r[i].y / degree};
+            rz += r[i].x * p[i].x + r[i].y * p[i].y;
             rr += r[i].x * r[i].x + r[i].y * r[i].y;
         }
-        partial[k] = rr;
+        partial[k] = rz;
+        partial2[k] = rr;
     });
-    double rr = sumPartials();
-    // Stop when the largest force left on a vertex is below the tolerance (relative to
-    // the axiom's circumradius of 1): the residual is the sum of the wall vectors.
-    const double stop = options.relaxTolerance * options.relaxTolerance;
+    double rz = sumPartials(partial);
+    double rr = sumPartials(partial2);
+    // Settled when the root-mean-square force left on a vertex (the sum of its wall
+    // vectors) is below the tolerance times the mean wall length: the vertices are then
+    // that close to their neighbours' centre, a fraction of a wall.
+    double wallLength = 0;
+    for (std::size_t e = 0; e < ne; ++e) {
+        const Vec3 d = map.position[map.head[e]] - map.position[map.tail[e]];
+        wallLength += std::sqrt(d.x * d.x + d.y * d.y);
+    }
+    wallLength /= static_cast<double>(std::max<std::size_t>(1, ne));
+    const double stop = options.relaxTolerance * options.relaxTolerance * wallLength * wallLength *
+                        static_cast<double>(n);
     int iterations = 0;
     auto interiorOrOutline = [&](std::uint32_t u, const std::vector<XY>& v) {
         return unknown[u] != 0xFFFFFFFFu ? v[unknown[u]] : XY{0, 0};
@@ -159,27 +170,32 @@ int relaxMap(PlaneMap& map, const MapDerivationOptions& options) {
             }
             partial[k] = pq;
         });
-        const double alpha = rr / sumPartials();
+        const double alpha = rz / sumPartials(partial);
         forEachBlock(blocks, workers, [&](std::size_t k) {
             auto [b, e] = blockRange(k);
-            double s = 0;
+            double sz = 0, sr = 0;
             for (std::size_t i = b; i < e; ++i) {
                 x[i].x += alpha * p[i].x;
                 x[i].y += alpha * p[i].y;
                 r[i].x -= alpha * q[i].x;
                 r[i].y -= alpha * q[i].y;
-                s += r[i].x * r[i].x + r[i].y * r[i].y;
+                const double degree = static_cast<double>(start[i + 1] - start[i]);
+                sz += (r[i].x * r[i].x + r[i].y * r[i].y) / degree;
+                sr += r[i].x * r[i].x + r[i].y * r[i].y;
             }
-            partial[k] = s;
+            partial[k] = sz;
+            partial2[k] = sr;
         });
-        const double next = sumPartials();
-        const double beta = next / rr;
-        rr = next;
+        const double next = sumPartials(partial);
+        const double beta = next / rz;
+        rz = next;
+        rr = sumPartials(partial2);
         forEachBlock(blocks, workers, [&](std::size_t k) {
             auto [b, e] = blockRange(k);
             for (std::size_t i = b; i < e; ++i) {
-                p[i].x = r[i].x + beta * p[i].x;
-                p[i].y = r[i].y + beta * p[i].y;
+                const double degree = static_cast<double>(start[i + 1] - start[i]);
+                p[i].x = r[i].x / degree + beta * p[i].x;
+                p[i].y = r[i].y / degree + beta * p[i].y;
             }
         });
     }
