@@ -4,7 +4,7 @@
 include(CMakePackageConfigHelpers)
 
 set(GRAFTAL_LAYERS graftal_core graftal_lang graftal_rewrite graftal_geometry graftal_turtle
-    graftal_output graftal_pipeline graftal_music)
+    graftal_output graftal_pipeline graftal_music graftal_maps)
 
 install(TARGETS ${GRAFTAL_LAYERS} graftal_lib
         EXPORT graftalTargets
@@ -38,8 +38,8 @@ install(FILES ${CMAKE_CURRENT_BINARY_DIR}/graftalConfig.cmake
 file(RELATIVE_PATH GRAFTAL_PC_TO_PREFIX "/p/${CMAKE_INSTALL_LIBDIR}/pkgconfig" "/p")
 string(REGEX REPLACE "/$" "" GRAFTAL_PC_TO_PREFIX "${GRAFTAL_PC_TO_PREFIX}")
 set(GRAFTAL_PC_LIBS "")
-foreach(layer graftal_music graftal_pipeline graftal_output graftal_turtle graftal_rewrite graftal_geometry
-        graftal_lang graftal_core)
+foreach(layer graftal_maps graftal_music graftal_pipeline graftal_output graftal_turtle
+        graftal_rewrite graftal_geometry graftal_lang graftal_core)
   string(APPEND GRAFTAL_PC_LIBS " -l${layer}")
 endforeach()
 if(GRAFTAL_STATIC)

@@ -113,6 +113,33 @@ for file in "$examples"/fig6.9-*music*.l "$examples"/sec6.3-*.l; do
     done
 done
 
+# Map L-systems (docs/maps.md) also in the other renderings their figures show: the
+# default picture is the Siero interpretation at the file's derivation length.
+map_renderings=(
+    "fig5.2-cell-layer|b|--map-geometry relaxed"
+    "fig5.2-cell-layer|c|--map-geometry spline"
+    "fig5.3-phascum-leaf|a|--map-geometry relaxed -n 10"
+    "fig5.3-phascum-leaf|b|--map-geometry spline -n 11"
+    "fig5.3-phascum-leaf|c|--map-geometry spline -n 12"
+)
+for entry in "${map_renderings[@]}"; do
+    IFS='|' read -r name variant options <<< "$entry"
+    file="$examples/$name.l"
+    [ -f "$file" ] || continue
+    out="$outdir/$name-$variant.png"
+    # shellcheck disable=SC2086  # the options are words
+    if msg=$("$exe" render "$file" -o "$out" --size 800x800 $options 2>&1) && [ -s "$out" ]; then
+        printf 'ok    %-40s -> %s\n' "$name.l ($variant)" "$out"
+        rendered=$((rendered + 1))
+        printf '| [<img src="%s.png" width="160" alt="%s">](%s.png) | %s (%s: `%s`) | `examples/%s.l` |\n' \
+            "$name-$variant" "$name-$variant" "$name-$variant" "$(caption "$file" "$name")" \
+            "$variant" "$options" "$name" >> "$index.tmp"
+    else
+        printf 'FAIL  %-40s %s\n' "$name.l ($variant)" "$(printf '%s' "$msg" | head -n 3 | tr '\n' ' ')"
+        failed=$((failed + 1))
+    fi
+done
+
 # Developmental figures as animations (graftal animate): one frame per step, the camera
 # fixed on the grown plant; the raceme and the fern declare their modules' ages and grow
 # between steps. Anabaena (Fig 1.4) draws nothing but its derivation, and the signals of

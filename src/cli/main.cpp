@@ -5,6 +5,7 @@
 
 #include "animate_command.hpp"
 #include "commands.hpp"
+#include "map_commands.hpp"
 #include "graftal/diagnostics.hpp"
 #include "graftal/file_format.hpp"
 #include "music_command.hpp"
@@ -134,6 +135,8 @@ int main(int argc, char** argv) {
 
     auto* derive = app.add_subcommand("derive", "print the derived module string");
     addInputOptions(*derive, in, memoryLimit);
+    graftal::cli::MapOptions mapOptions;
+    graftal::cli::addMapOptions(*derive, mapOptions, false);
     derive->add_flag("--homo", homomorphism, "print the string after the homomorphism");
     std::string deriveFormat = "text";
     derive
@@ -144,6 +147,7 @@ int main(int argc, char** argv) {
 
     auto* stats = app.add_subcommand("stats", "print counts and bounds as JSON");
     addInputOptions(*stats, in, memoryLimit);
+    graftal::cli::addMapOptions(*stats, mapOptions, false);
     stats->add_flag("--no-geometry", noGeometry, "derive and count only, no turtle");
     stats->add_flag("--predict", predict,
                     "module counts per step from the productions, without deriving");
@@ -154,6 +158,7 @@ int main(int argc, char** argv) {
                       ") or 3D files (" +
                       graftal::extensionList(graftal::FormatKind::Mesh, " ", " ") + ")");
     addInputOptions(*render, in, memoryLimit);
+    graftal::cli::addMapOptions(*render, mapOptions, true);
     render
         ->add_option("-o,--output", out.output,
                      "output file: " + graftal::extensionList(std::nullopt, " ", " ") +
@@ -220,6 +225,9 @@ int main(int argc, char** argv) {
     try {
         if (!memoryLimit.empty()) in.memoryLimit = graftal::cli::parseByteSize(memoryLimit);
         if (*studio.command) return graftal::cli::runStudio(studio);
+        const bool map = graftal::cli::isMapInput(in);
+        if (*derive && map) return graftal::cli::runMapDerive(in, mapOptions);
+        if (*stats && map) return graftal::cli::runMapStats(in, mapOptions);
         if (*derive)
             return graftal::cli::runDerive(in, homomorphism,
                                            deriveFormat == "json"
@@ -236,6 +244,7 @@ int main(int argc, char** argv) {
         if (!up.empty()) out.up = graftal::cli::parseVector("--up", up);
         if (!light.empty()) out.light = graftal::cli::parseVector("--light", light);
         if (!color.empty()) out.render.lineColor = graftal::cli::parseColor(color);
+        if (map) return graftal::cli::runMapRender(in, out, mapOptions);
         return graftal::cli::runRender(in, out);
     } catch (const graftal::Error& e) {
         for (const auto& d : e.diagnostics()) std::cerr << graftal::cli::describe(d) << '\n';

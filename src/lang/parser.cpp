@@ -297,6 +297,12 @@ void Parser::parseLine(const SourceLine& line) {
         ended_ = true;
         return;
     }
+    if (word.rfind("map l-system:", 0) == 0 || word.rfind("map lsystem:", 0) == 0) {
+        diags_.error(at(line, start),
+                     "this file is a map L-system (docs/maps.md): graftal derive, stats and "
+                     "render read it, not as a string L-system");
+        return;
+    }
     if (word == "ring lsystem" || word == "ring lsystem:") {
         target_.ring(at(line, firstNonBlank(line.text)));
         return;

@@ -1,0 +1,145 @@
+// The map L-system commands: parse, derive the map, then print it, count it or draw it.
+#include "map_commands.hpp"
+
+#include <iostream>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "graftal/map_drawing.hpp"
+#include "graftal/map_lsystem.hpp"
+#include "graftal/output.hpp"
+#include "graftal/plane_map.hpp"
+
+namespace graftal::cli {
+
+namespace {
+
+Error usageError(const std::string& message) {
+    return Error(SourceLocation{"graftal", 0, 0}, message);
+}
+
+struct LoadedMap {
+    MapLSystem system;
+    int steps = 0;
+};
+
+LoadedMap loadMap(const InputOptions& in) {
+    if (in.steps && *in.steps < 0)
+        throw usageError("-n " + std::to_string(*in.steps) +
+                         ": the derivation length must be 0 or more");
+    if (!in.viewFile.empty())
+        throw usageError("a map L-system takes no view file ('" + in.viewFile + "')");
+    ParseOptions po;
+    po.defines = in.defines;
+    MapParseResult parsed = loadMapLSystem(in.file, po);
+    if (!parsed.ok()) throw Error(parsed.errors());
+    if (!in.quiet)
+        for (const auto& w : parsed.warnings()) std::cerr << w.toString() << '\n';
+    LoadedMap l{std::move(parsed).orThrow(), 0};
+    l.steps = in.steps.value_or(l.system.derivationLength);
+    return l;
+}
+
+MapDerivationOptions derivationOptions(const InputOptions& in, const MapOptions& map) {
+    MapDerivationOptions o;
+    o.threads = in.threads;
+    if (map.geometry == "siero")
+        o.geometry = MapGeometry::Siero;
+    else if (map.geometry == "relaxed" || map.geometry == "spline")
+        o.geometry = MapGeometry::Relaxed;
+    else
+        throw usageError("--map-geometry '" + map.geometry +
+                         "': expected siero, relaxed or spline");
+    return o;
+}
+
+struct DerivedMap {
+    PlaneMap map;
+    MapStepReport last;
+    long long relaxIterations = 0;  // over all steps
+};
+
+DerivedMap derive(const InputOptions& in, const MapOptions& options) {
+    MapDerivationOptions o = derivationOptions(in, options);  // option errors first
+    LoadedMap l = loadMap(in);
+    DerivedMap d;
+    d.map = deriveMap(l.system, l.steps, o, [&](const PlaneMap&, const MapStepReport& r) {
+        d.last = r;
+        d.relaxIterations += r.relaxIterations;
+    });
+    return d;
+}
+
+}  // namespace
+
+void addMapOptions(CLI::App& cmd, MapOptions& map, bool drawing) {
+    cmd.add_option("--map-geometry", map.geometry,
+                   "map L-systems: siero (vertices stay where born), relaxed (at their "
+                   "neighbours' centre), spline (relaxed, cells as B-splines)");
+    if (!drawing) return;
+    cmd.add_option("--map-fill", map.fill, "map L-systems: fill cells by none, age, sides, labels");
+    cmd.add_flag("--map-uniform-width", map.uniformWidth,
+                 "map L-systems: every wall equally wide (default: width grows with age)");
+}
+
+bool isMapInput(const InputOptions& in) {
+    return isMapLSystemFile(in.file);
+}
+
+int runMapDerive(const InputOptions& in, const MapOptions& map) {
+    DerivedMap d = derive(in, map);
+    writeMapText(d.map, std::cout);
+    std::cout.flush();
+    return std::cout ? 0 : 1;
+}
+
+int runMapStats(const InputOptions& in, const MapOptions& map) {
+    DerivedMap d = derive(in, map);
+    const PlaneMap& m = d.map;
+    nlohmann::ordered_json j;
+    j["file"] = in.file;
+    j["steps"] = m.step;
+    j["vertices"] = m.vertexCount();
+    j["edges"] = m.edgeCount();
+    j["cells"] = m.cellCount();
+    std::map<std::size_t, std::size_t> sides;
+    for (std::uint32_t r = 1; r < m.regionCount(); ++r) ++sides[m.boundary(r).size()];
+    nlohmann::ordered_json hist = nlohmann::ordered_json::object();
+    for (const auto& [k, n] : sides) hist[std::to_string(k)] = n;
+    j["cell sides"] = hist;
+    j["branches"] = {{"connected", d.last.connected},
+                     {"discarded", d.last.discarded},
+                     {"crossing", d.last.crossing},
+                     {"outside", d.last.outside}};
+    if (map.geometry != "siero") j["relaxation iterations"] = d.relaxIterations;
+    Bounds b;
+    for (const Vec3& p : m.position) b.extend(p);
+    if (b.empty()) b.extend(Vec3{});
+    j["bbox"] = {{"min", {b.min.x, b.min.y, b.min.z}}, {"max", {b.max.x, b.max.y, b.max.z}}};
+    std::cout << j.dump(2) << '\n';
+    return 0;
+}
+
+int runMapRender(const InputOptions& in, const RenderCommandOptions& out, const MapOptions& map) {
+    if (!imageFormatFor(out.output))
+        throw usageError("'" + out.output +
+                         "': a map L-system is drawn as a picture (.svg, .png or .pdf)");
+    if (!out.view.empty() || out.derivation)
+        throw usageError("--view and --derivation do not apply to a map L-system");
+    MapDrawingOptions drawing;
+    drawing.splines = map.geometry == "spline";
+    drawing.widthByAge = !map.uniformWidth;
+    if (auto fill = mapFillFromName(map.fill))
+        drawing.fill = *fill;
+    else
+        throw usageError("--map-fill '" + map.fill + "': expected none, age, sides or labels");
+    if (out.spline && *out.spline > 0) drawing.splineSubdivisions = *out.spline;
+    DerivedMap d = derive(in, map);
+    Scene scene = mapScene(d.map, drawing);
+    RenderOptions o = out.render;
+    if (o.lineColor) scene.palette[0] = *o.lineColor, o.lineColor.reset();
+    writeImage(scene, o, out.output);
+    return 0;
+}
+
+}  // namespace graftal::cli
