@@ -7,6 +7,7 @@ BUILD_DIR ?= build
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 DEBIAN_PACKAGES := cmake g++ make pkg-config ccache libgtest-dev libcli11-dev libcairo2-dev \
                    nlohmann-json3-dev poppler-utils libembree-dev libtinygltf-dev
+CPFG_PACKAGES := libmcpp-dev
 # Node.js and npm run the glTF validator in the tests; a machine that already has them
 # (from any source) keeps its own, since Debian's npm conflicts with other Node builds.
 NODE_PACKAGES := $(shell command -v node >/dev/null 2>&1 || echo nodejs) \
@@ -40,7 +41,7 @@ fi
 endef
 
 deps:
-	$(call install-missing,$(DEBIAN_PACKAGES) $(NODE_PACKAGES))
+	$(call install-missing,$(DEBIAN_PACKAGES) $(CPFG_PACKAGES) $(NODE_PACKAGES))
 
 configure: deps
 	@cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release > /dev/null

@@ -44,7 +44,7 @@ foreach(layer graftal_pipeline graftal_output graftal_turtle graftal_rewrite gra
 endforeach()
 if(GRAFTAL_STATIC)
   set(GRAFTAL_PC_REQUIRES_PRIVATE "cairo")
-  set(GRAFTAL_PC_LIBS_PRIVATE "-lembree3 ${CMAKE_DL_LIBS}")
+  set(GRAFTAL_PC_LIBS_PRIVATE "-lembree3 -lmcpp ${CMAKE_DL_LIBS}")
 else()
   set(GRAFTAL_PC_REQUIRES_PRIVATE "")
   set(GRAFTAL_PC_LIBS_PRIVATE "")

@@ -9,6 +9,7 @@
 #include "graftal/parser_target.hpp"
 #include "graftal/view_file.hpp"
 #include "parser.hpp"
+#include "preprocessor.hpp"
 #include "source_text.hpp"
 
 namespace graftal {
@@ -28,6 +29,8 @@ void completeEnd(SourceLocation& loc, const SourceText& src) {
     loc.endLine = loc.line;
     loc.endColumn = loc.column + 1;
     if (it == src.lines.end() || it->number != loc.line || loc.column < 1) return;
+    // A preprocessed line is numbered in the preprocessor's output, not in the file.
+    if (!it->spans.empty() && it->spans.front().line != loc.line) return;
     const std::string& t = it->text;
     std::size_t b = static_cast<std::size_t>(loc.column - 1);
     if (b >= t.size()) return;
@@ -75,7 +78,12 @@ void parseInto(std::string_view text, const ParseOptions& options, ParserTarget&
                DiagnosticList& diagnostics) {
     DiagnosticList diags;
     SourceText src;
-    if (prepareSource(text, options.fileName, src, diags)) {
+    bool ready = prepareSource(text, options.fileName, src, diags);
+    // Like cpfg, a file goes through the C preprocessor (preprocessor.hpp) before its lines
+    // are read; only files with a directive or given -D need it.
+    PreprocessOptions pp{options.fileName, options.defines, 0};
+    if (ready && needsPreprocessing(text, pp)) ready = preprocessSource(text, pp, src, diags);
+    if (ready) {
         joinBlockLines(src);
         parsing::Parser(src, options, diags, target).run();
     }
