@@ -130,6 +130,7 @@ class ModelBuilder : public ParserTarget {
     void endOfInput(const SourceLocation& last) override;
 
   private:
+    void loadFunctions(const ViewSetting& setting);
     void warnShadowedProductions();
     void warnSubLsystemEnds();
     SourceLocation axiomLocation_;

@@ -62,6 +62,8 @@ const std::vector<ViewLine>& viewLines() {
         {"front distance", "clipping planes are not read", Kind::Ignored},
         {"back distance", "clipping planes are not read", Kind::Ignored},
         {"line style", "line style", Kind::Text},
+        {"function", "function", Kind::Text},
+        {"function set", "function set", Kind::Text},
     };
     return lines;
 }
