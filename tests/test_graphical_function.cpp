@@ -64,11 +64,11 @@ TEST(GraphicalFunction, TheOldFormatTakesItsSamplesFromTheViewLine) {
 }
 
 TEST(GraphicalFunction, ARepeatedPointAndAFunctionSet) {
-    std::vector<GraphicalFunction> set = parseFunctionSet(
-        "funcgalleryver 1 1\nitems: 2\n" + std::string(kLine) +
-            "fver 1 1\nname: hump\nsamples: 3\nflip: off\npoints: 4\n"
-            "0 0\n0.25 1 2\n0.75 1\n1 0\n",
-        "set.fset");
+    std::vector<GraphicalFunction> set =
+        parseFunctionSet("funcgalleryver 1 1\nitems: 2\n" + std::string(kLine) +
+                             "fver 1 1\nname: hump\nsamples: 3\nflip: off\npoints: 4\n"
+                             "0 0\n0.25 1 2\n0.75 1\n1 0\n",
+                         "set.fset");
     ASSERT_EQ(set.size(), 2u);
     EXPECT_EQ(set[1].name(), "hump");
     EXPECT_EQ(set[1].points().size(), 5u) << "the third number repeats the point";
@@ -86,9 +86,9 @@ TEST(GraphicalFunction, ErrorsNameTheFileAndLine) {
         EXPECT_EQ(e.diagnostics().front().toString().rfind("bad.func:7:", 0), 0u)
             << e.diagnostics().front().toString();
     }
-    EXPECT_THROW(parseFunctionFile("fver 1 1\nname: x\nsamples: 0\nflip: off\npoints: 3\n",
-                                   "few.func"),
-                 Error)
+    EXPECT_THROW(
+        parseFunctionFile("fver 1 1\nname: x\nsamples: 0\nflip: off\npoints: 3\n", "few.func"),
+        Error)
         << "a B-spline of cpfg needs four points";
 }
 

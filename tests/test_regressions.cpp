@@ -284,8 +284,7 @@ TEST(Regressions, SubtreeSummariesStayWithinTheMemoryLimit) {
     EXPECT_EQ(readFile(png).substr(1, 3), "PNG");
     EXPECT_FALSE(streamedPictureIsSummarised(
         Model{graftal::testing::parse(readFile(regression("long-identity-derivation.l"))), {}},
-        150000,
-        std::size_t(64) << 20));
+        150000, std::size_t(64) << 20));
 }
 
 TEST(Regressions, StreamingKeepsEveryParameterOfAModule) {

@@ -49,7 +49,6 @@ GraphicalFunction parseFunctionFile(std::string_view text, const std::string& fi
                                     int oldFormatSamples = 0);
 
 // A `.fset` file: `funcgalleryver 1 1`, `items: k`, then k `fver 1 1` functions.
-std::vector<GraphicalFunction> parseFunctionSet(std::string_view text,
-                                                const std::string& fileName);
+std::vector<GraphicalFunction> parseFunctionSet(std::string_view text, const std::string& fileName);
 
 }  // namespace graftal

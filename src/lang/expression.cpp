@@ -1056,13 +1056,13 @@ double Expression::run(std::span<const double> slots, const EvalContext* ctx) co
                 --sp;
                 std::size_t count = ctx && ctx->functions ? ctx->functions->size() : 0;
                 if (!(id >= 1 && id < static_cast<double>(count) + 1))
-                    throw Error(location_,
-                                "'" + text_ + "': func(" + formatNumber(id) +
-                                    ", x) names no function: " +
-                                    (count == 0 ? std::string("the view file names none "
-                                                              "('function:' or 'function set:')")
-                                                : "there are " + std::to_string(count) +
-                                                      ", counted from 1"));
+                    throw Error(
+                        location_,
+                        "'" + text_ + "': func(" + formatNumber(id) + ", x) names no function: " +
+                            (count == 0
+                                 ? std::string("the view file names none "
+                                               "('function:' or 'function set:')")
+                                 : "there are " + std::to_string(count) + ", counted from 1"));
                 st[sp] = (*ctx->functions)[static_cast<std::size_t>(id) - 1].value(x);
                 break;
             }

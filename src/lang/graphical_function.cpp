@@ -13,9 +13,9 @@ namespace graftal {
 
 namespace {
 
-constexpr int kOrder = 4;                 // cubic
+constexpr int kOrder = 4;                   // cubic
 constexpr double kSearchTolerance = 0.001;  // cpfg's bisection stops within this in x
-constexpr int kMaxSearchSteps = 200;      // a curve whose x is not monotone may never get there
+constexpr int kMaxSearchSteps = 200;        // a curve whose x is not monotone may never get there
 
 // The clamped uniform knots of cpfg's curves over n + 1 control points: four zeros, then
 // 1, 2, ..., and four times n - 2 at the end.
@@ -160,8 +160,7 @@ GraphicalFunction readFunction(LineReader& in, const std::string& fileName, int 
     if (!startsWith(first, "fver")) in.fail("expected 'fver 1 1' or 'range: lo hi'", 1);
     std::vector<double> v = in.numbers(first.substr(first.find("fver") + 4), 2);
     if (v[0] != 1 || v[1] != 1)
-        in.fail("function format version " + std::string(first) + " is not supported (1 1 is)",
-                1);
+        in.fail("function format version " + std::string(first) + " is not supported (1 1 is)", 1);
     return readVersion101(in);
 }
 

@@ -142,11 +142,11 @@ void ModelBuilder::loadFunctions(const ViewSetting& setting) {
         char* stop = nullptr;
         double d = std::strtod(samplesWord.c_str(), &stop);
         if (*stop || d != std::floor(d) || d < 0 || d > 1e6 || setting.name != "function") {
-            diags_.error(setting.location, "'" + setting.name + ":' expects a file name" +
-                                               (setting.name == "function"
-                                                    ? std::string(" and a number of samples")
-                                                    : std::string()) +
-                                               ", found '" + *text + "'");
+            diags_.error(setting.location,
+                         "'" + setting.name + ":' expects a file name" +
+                             (setting.name == "function" ? std::string(" and a number of samples")
+                                                         : std::string()) +
+                             ", found '" + *text + "'");
             return;
         }
         samples = static_cast<int>(d);

@@ -21,14 +21,14 @@ struct SourceSpan {
 };
 
 struct SourceLine {
-    int number = 0;    // 1-based
-    std::string text;  // comments replaced by spaces
+    int number = 0;                 // 1-based
+    std::string text;               // comments replaced by spaces
     std::vector<SourceSpan> spans;  // empty: the line is line `number` of the file
 };
 
 struct SourceText {
     std::string fileName;
-    std::vector<SourceLine> lines;  // in increasing order of `number`
+    std::vector<SourceLine> lines;               // in increasing order of `number`
     std::map<std::string, std::string> defines;  // object-like #defines the preprocessor saw
 
     // The user's file, line and column of column `column` of the line numbered `line`
