@@ -127,3 +127,21 @@ TEST(GraphicalFunction, AnUnknownIdOrFileIsAnError) {
     EXPECT_NE(parseError("Lsystem: 1\nAxiom: A(tfunc(1,0))\n\nendlsystem\n").find("tfunc"),
               std::string::npos);
 }
+
+TEST(GraphicalFunction, AModelFolderGivesItsFunctionSetAndColourMap) {
+    // cpfg takes a folder's .fset and .map on its command line; a folder given alone uses
+    // its one of each (a view file's function lines win over the folder's set).
+    TempDir dir;
+    dir.write("m.l",
+              "Lsystem: 1\nderivation length: 1\nAxiom: A\nA --> B(func(1,0.25))\nendlsystem\n");
+    dir.write("m.v", "angle increment: 30\n");
+    dir.write("functions.fset", "funcgalleryver 1 1\nitems: 1\n" + std::string(kBump));
+    dir.write("colours.map", std::string(768, '\x40'));
+    Model m = loadModel(dir.path()).orThrow();
+    EXPECT_NEAR(derive(m, -1).params(0)[0], 0.5625, 1e-5);
+    EXPECT_EQ(m.view.colorMap, "colours.map");
+    dir.write("line.func", kLine);
+    dir.write("m.v", "function: line.func\n");
+    Model v = loadModel(dir.path()).orThrow();
+    EXPECT_NEAR(derive(v, -1).params(0)[0], 1.25, 1e-5);
+}
