@@ -44,7 +44,7 @@ foreach(layer graftal_maps graftal_music graftal_pipeline graftal_output graftal
 endforeach()
 if(GRAFTAL_STATIC)
   set(GRAFTAL_PC_REQUIRES_PRIVATE "cairo smf fluidsynth")
-  set(GRAFTAL_PC_LIBS_PRIVATE "-lembree3 ${CMAKE_DL_LIBS}")
+  set(GRAFTAL_PC_LIBS_PRIVATE "-lembree3 -lmcpp ${CMAKE_DL_LIBS}")
 else()
   set(GRAFTAL_PC_REQUIRES_PRIVATE "")
   set(GRAFTAL_PC_LIBS_PRIVATE "")

@@ -61,8 +61,10 @@ TEST(ViewFile, EachSettingReachesTheView) {
     EXPECT_EQ(v.upVector, (Vec3{1, 0, 0}));
     EXPECT_TRUE(v.parallelProjection);
     EXPECT_DOUBLE_EQ(v.twistDegrees, 45) << "cpfg's twist is in tenths of a degree";
-    EXPECT_EQ(v.tropism, (Vec3{0, -1, 0})) << "normalised";
-    EXPECT_DOUBLE_EQ(v.elasticity, 0.25);
+    ASSERT_EQ(v.tropisms.size(), 1u) << "a `tropism:` line acts before every move";
+    EXPECT_EQ(v.tropisms[0].direction, (Vec3{0, -1, 0})) << "normalised";
+    EXPECT_DOUBLE_EQ(v.tropisms[0].elasticity, 0.25);
+    EXPECT_FALSE(v.tropism) << "not the book's tropism after each segment";
     EXPECT_EQ(v.torque, (Vec3{1, 0, 0}));
     EXPECT_DOUBLE_EQ(v.torqueElasticity, 0.5);
 }

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "graftal/diagnostics.hpp"
+#include "graftal/graphical_function.hpp"
 
 namespace graftal {
 
@@ -39,6 +40,8 @@ struct EvalContext {
     const std::function<void(std::string_view)>* print = nullptr;
     // Where fopen/fprintf go. nullptr: using them is an error.
     OutputFiles* files = nullptr;
+    // The graphical functions func(id, x) reads (LSystem::functions), id counted from 1.
+    const std::vector<GraphicalFunction>* functions = nullptr;
 };
 
 class Expression {
@@ -81,6 +84,7 @@ class Expression {
         JumpIfTrue,
         Jump,
         Pop,
+        Func,  // func(id, x): the id-th graphical function of the EvalContext at x
     };
     struct Instr {
         Op op;
@@ -118,7 +122,7 @@ class Expression {
     // Reads the state or prints: needs an EvalContext with `state` (and `print`).
     bool usesState() const { return usesState_; }
     bool prints() const { return prints_; }
-    bool needsContext() const { return usesRandom_ || usesState_ || prints_; }
+    bool needsContext() const { return usesRandom_ || usesState_ || prints_ || usesFunctions_; }
     const std::string& text() const { return text_; }
     const SourceLocation& location() const { return location_; }
     void print(std::ostream& os) const { os << text_; }
@@ -167,6 +171,7 @@ class Expression {
     bool usesRandom_ = false;
     bool usesState_ = false;
     bool prints_ = false;
+    bool usesFunctions_ = false;
     std::uint32_t maxStack_ = 0;
 };
 

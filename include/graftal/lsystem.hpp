@@ -15,6 +15,7 @@
 #include "graftal/diagnostics.hpp"
 #include "graftal/environment_line.hpp"
 #include "graftal/expression.hpp"
+#include "graftal/graphical_function.hpp"
 #include "graftal/module_string.hpp"
 #include "graftal/rgb.hpp"
 #include "graftal/vec3.hpp"
@@ -117,6 +118,9 @@ class LSystem {
     bool ring = false;
     bool legacyPfg = false;                    // read as a pfg data file (no Lsystem: header)
     std::vector<EnvironmentLine> environment;  // `environment:` lines, in file order
+    // Graphical functions for func(id, x), id counted from 1: the view file's `function:`
+    // lines or its `function set:` (they are not part of the .l text).
+    std::vector<GraphicalFunction> functions;
     std::map<std::string, std::string> defines;
     // State shared by blocks and expressions: slot 0 is Q (the step being performed), 1 is Z
     // (the derivation length); then the globals (assigned in Start:, StartEach:, EndEach:

@@ -133,6 +133,7 @@ class ModelBuilder : public ParserTarget {
     void moduleAge(const ModuleAge& age) override;
 
   private:
+    void loadFunctions(const ViewSetting& setting);
     void warnShadowedProductions();
     void warnSubLsystemEnds();
     SourceLocation axiomLocation_;

@@ -32,6 +32,13 @@ StreamedMeasure measureStreamed(const Model& model, int steps,
 // storing any geometry (what `graftal stats` needs, at any size).
 StreamedMeasure measureModules(const Model& model, const ModuleString& modules);
 
+// cpfg's view volume of a derived string: the box cpfg writes (its `box` line), which is
+// not the box of the drawn geometry: it holds the turtle's position wherever cpfg ends a
+// segment (before every move drawn or not, at [ and ], { }, ~ and @, and at the end, so
+// the origin is always inside), where @M lands, the squares of @o (at z = 0) and @c and
+// the cube of @O; line widths do not count.
+Bounds cpfgViewVolume(const Model& model, const ModuleString& modules);
+
 // The Scene interpret(derive(...)) would give, built from a streamed derivation.
 Scene interpretStreamed(const Model& model, int steps, const DerivationOptions& options = {});
 

@@ -57,8 +57,19 @@ struct ViewSettings {
     // Tropism (LSFP ch. 3.1): after each segment H turns toward `tropism` by e·|H × T|.
     std::optional<Vec3> tropism;
     double elasticity = 0;
-    // Torque (cpfg's "torque:"): before each segment the turtle rolls about H so that U
-    // turns toward `torque` by e·|U × T|.
+    // `tropism direction:` read from a cpfg view file: cpfg's rule after each segment, H
+    // pitches toward T (by the angle whose sine is e·T·U) and then turns toward it (sine
+    // e·T·L), instead of the book's rotation about H × T.
+    bool cpfgTropism = false;
+    // cpfg's `tropism: T: x,y,z E: e` lines (T normalised): before every move (F, G, f, g)
+    // H turns toward V = Σ e·T by min(1, |H × V|) radians.
+    struct Movement {
+        Vec3 direction;
+        double elasticity = 0;
+    };
+    std::vector<Movement> tropisms;
+    // Torque (cpfg's "torque:"): before every move the turtle rolls about H so that its up
+    // vector turns toward the part of e·T across H, by min(1, |U × that|) radians.
     std::optional<Vec3> torque;
     double torqueElasticity = 0;
     // Camera and light for pictures of 3D scenes (cpfg's view-file names).
@@ -76,6 +87,15 @@ struct ViewSettings {
 };
 
 std::ostream& operator<<(std::ostream& os, const ViewSettings& v);
+
+// True when tropisms or a torque change the turtle's path (no shortcut may skip them).
+inline bool turtleIsBent(const ViewSettings& v) {
+    if (v.tropism && v.elasticity != 0) return true;
+    if (v.torque && v.torqueElasticity != 0) return true;
+    for (const auto& m : v.tropisms)
+        if (m.elasticity != 0) return true;
+    return false;
+}
 
 // What ! (narrower) and # (wider) do to a width: subtract or add cpfg's line width increment
 // when the view gives one, else multiply or divide by the width factor. Never below zero.

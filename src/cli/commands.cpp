@@ -333,11 +333,17 @@ int runStats(const InputOptions& in, bool geometry, bool predict) {
     // Counts and bounds only: the turtle walks without storing any geometry. Without a
     // homomorphism that walk also counts the symbols, so the string is read once.
     std::optional<StreamedMeasure> m;
-    if (geometry)
-        m = measureModules(l.model, l.model.lsystem.homomorphism.empty()
-                                        ? modules
-                                        : applyHomomorphism(l.model.lsystem, modules,
-                                                            derivationOptions(in, l.model)));
+    std::optional<Bounds> viewVolume;
+    if (geometry) {
+        ModuleString drawn =
+            l.model.lsystem.homomorphism.empty()
+                ? ModuleString()
+                : applyHomomorphism(l.model.lsystem, modules, derivationOptions(in, l.model));
+        const ModuleString& seen = l.model.lsystem.homomorphism.empty() ? modules : drawn;
+        m = measureModules(l.model, seen);
+        // A cpfg file's box is cpfg's view volume (the box line of its output).
+        if (!l.model.lsystem.legacyPfg) viewVolume = cpfgViewVolume(l.model, seen);
+    }
     std::vector<std::uint64_t> counts;
     if (m && l.model.lsystem.homomorphism.empty()) {
         counts = m->symbolCounts;
@@ -349,7 +355,7 @@ int runStats(const InputOptions& in, bool geometry, bool predict) {
     if (m) {
         j["segments"] = m->segments;
         j["polygons"] = m->polygons;
-        j["bbox"] = bboxJson(m->bounds);
+        j["bbox"] = bboxJson(viewVolume ? *viewVolume : m->bounds);
     }
     std::cout << j.dump(2) << '\n';
     return 0;

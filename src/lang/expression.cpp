@@ -56,7 +56,7 @@ constexpr std::array kFunctions{
     FunctionInfo{"min", 2, FnMin},   FunctionInfo{"max", 2, FnMax},
     FunctionInfo{"ran", 1, 0},       FunctionInfo{"nran", 2, 0},
     FunctionInfo{"bran", 2, 0},      FunctionInfo{"biran", 2, 0},
-    FunctionInfo{"srand", 1, 0},
+    FunctionInfo{"srand", 1, 0},     FunctionInfo{"func", 2, 0},
 };
 
 }  // namespace
@@ -460,6 +460,7 @@ class ExpressionCompiler {
         expr_.usesRandom_ |= e.usesRandom_;
         expr_.usesState_ |= e.usesState_;
         expr_.prints_ |= e.prints_;
+        expr_.usesFunctions_ |= e.usesFunctions_;
         auto abase = static_cast<std::uint32_t>(expr_.arrays_.size());
         expr_.arrays_.insert(expr_.arrays_.end(), e.arrays_.begin(), e.arrays_.end());
         for (std::size_t k = expr_.code_.size() - e.code_.size(); k < expr_.code_.size(); ++k)
@@ -621,6 +622,10 @@ class ExpressionCompiler {
             parseFileCall(name);
             return;
         }
+        if (name == "tfunc") {
+            fail(start, "tfunc() (functions of time from a timeline file) is not supported");
+            return;
+        }
         const FunctionInfo* fn = nullptr;
         for (const auto& f : kFunctions)
             if (name == f.name) fn = &f;
@@ -647,7 +652,10 @@ class ExpressionCompiler {
                             (fn->arity == 1 ? "" : "s") + ", not " + std::to_string(count));
             return;
         }
-        if (name == "ran") {
+        if (name == "func") {
+            emit(Expression::Op::Func);
+            expr_.usesFunctions_ = true;
+        } else if (name == "ran") {
             emit(Expression::Op::Ran);
             expr_.usesRandom_ = true;
         } else if (name == "nran") {
@@ -1043,6 +1051,21 @@ double Expression::run(std::span<const double> slots, const EvalContext* ctx) co
             case Op::Pop:
                 --sp;
                 break;
+            case Op::Func: {
+                double id = st[sp - 1], x = st[sp];
+                --sp;
+                std::size_t count = ctx && ctx->functions ? ctx->functions->size() : 0;
+                if (!(id >= 1 && id < static_cast<double>(count) + 1))
+                    throw Error(
+                        location_,
+                        "'" + text_ + "': func(" + formatNumber(id) + ", x) names no function: " +
+                            (count == 0
+                                 ? std::string("the view file names none "
+                                               "('function:' or 'function set:')")
+                                 : "there are " + std::to_string(count) + ", counted from 1"));
+                st[sp] = (*ctx->functions)[static_cast<std::size_t>(id) - 1].value(x);
+                break;
+            }
             case Op::Load:
                 if (!ctx || !ctx->state)
                     throw Error(location_, "'" + text_ + "' reads a variable where none exists");

@@ -9,6 +9,7 @@
 #include "graftal/parser_target.hpp"
 #include "graftal/view_file.hpp"
 #include "parser.hpp"
+#include "preprocessor.hpp"
 #include "source_text.hpp"
 
 namespace graftal {
@@ -28,6 +29,8 @@ void completeEnd(SourceLocation& loc, const SourceText& src) {
     loc.endLine = loc.line;
     loc.endColumn = loc.column + 1;
     if (it == src.lines.end() || it->number != loc.line || loc.column < 1) return;
+    // A preprocessed line is numbered in the preprocessor's output, not in the file.
+    if (!it->spans.empty() && it->spans.front().line != loc.line) return;
     const std::string& t = it->text;
     std::size_t b = static_cast<std::size_t>(loc.column - 1);
     if (b >= t.size()) return;
@@ -75,7 +78,12 @@ void parseInto(std::string_view text, const ParseOptions& options, ParserTarget&
                DiagnosticList& diagnostics) {
     DiagnosticList diags;
     SourceText src;
-    if (prepareSource(text, options.fileName, src, diags)) {
+    bool ready = prepareSource(text, options.fileName, src, diags);
+    // Like cpfg, a file goes through the C preprocessor (preprocessor.hpp) before its lines
+    // are read; only files with a directive or given -D need it.
+    PreprocessOptions pp{options.fileName, options.defines, 0};
+    if (ready && needsPreprocessing(text, pp)) ready = preprocessSource(text, pp, src, diags);
+    if (ready) {
         joinBlockLines(src);
         parsing::Parser(src, options, diags, target).run();
     }
@@ -122,6 +130,29 @@ std::vector<std::filesystem::path> filesEndingWith(const std::filesystem::path& 
 
 }  // namespace
 
+// What cpfg is given beside the .l and .v on its command line, found in a model folder:
+// its one colour map (.map), unless the model names one, and its one function set (.fset),
+// unless the view file names functions.
+namespace {
+
+void addFolderFiles(const std::filesystem::path& folder, ParseResult& result) {
+    Model& model = result.model;
+    auto maps = filesEndingWith(folder, ".map");
+    if (model.view.colorMap.empty() && maps.size() == 1)
+        model.view.colorMap = maps[0].filename().string();
+    auto sets = filesEndingWith(folder, ".fset");
+    if (sets.size() != 1 || !model.lsystem.functions.empty()) return;
+    std::string text;
+    if (!readWholeFile(sets[0], text)) return;
+    try {
+        model.lsystem.functions = parseFunctionSet(text, sets[0].string());
+    } catch (const Error& e) {
+        for (const auto& d : e.diagnostics()) result.diagnostics.push_back(d);
+    }
+}
+
+}  // namespace
+
 ParseResult loadModel(const std::filesystem::path& given, ParseOptions options) {
     std::filesystem::path path = given;
     auto failure = [&](const std::string& message) {
@@ -154,7 +185,11 @@ ParseResult loadModel(const std::filesystem::path& given, ParseOptions options) 
                            ? "is a directory, expected an L-system file"
                            : "cannot open the file (does it exist?)");
     ParseResult result = parse(text, options);
-    if (options.viewFile.empty()) return result;
+    const bool folder = std::filesystem::is_directory(given, ec);
+    if (options.viewFile.empty()) {
+        if (folder) addFolderFiles(given, result);
+        return result;
+    }
     std::string viewText;
     if (!readWholeFile(options.viewFile, viewText)) {
         result.diagnostics.push_back({Severity::Error, SourceLocation{options.viewFile, 0, 0},
@@ -167,6 +202,7 @@ ParseResult loadModel(const std::filesystem::path& given, ParseOptions options) 
     parseViewFileInto(viewText, options.viewFile, builder, diags);
     result.model = std::move(builder.model());
     for (const auto& d : diags.items()) result.diagnostics.push_back(d);
+    if (folder) addFolderFiles(given, result);
     return result;
 }
 

@@ -1,6 +1,12 @@
 // The standard ParserTarget: the calls of a front end become a Model.
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <optional>
+#include <sstream>
+#include <variant>
 
 #include "graftal/parser_target.hpp"
 
@@ -123,8 +129,58 @@ void ModelBuilder::environmentLine(EnvironmentLine line) {
 }
 
 void ModelBuilder::viewSetting(const ViewSetting& setting) {
+    if (setting.name == "function" || setting.name == "function set") {
+        loadFunctions(setting);
+        return;
+    }
     std::string problem = applyViewSetting(model_.view, setting);
     if (!problem.empty()) diags_.error(setting.location, std::move(problem));
+}
+
+// `function: file.func [samples]` adds one function, `function set: file.fset` replaces
+// them all (as in cpfg); files are found beside the view file.
+void ModelBuilder::loadFunctions(const ViewSetting& setting) {
+    const auto* text = std::get_if<std::string>(&setting.value);
+    if (!text || text->empty()) {
+        diags_.error(setting.location, "'" + setting.name + ":' expects a file name");
+        return;
+    }
+    std::istringstream words(*text);
+    std::string name, samplesWord, extra;
+    words >> name >> samplesWord >> extra;
+    int samples = 0;
+    if (!samplesWord.empty()) {
+        char* stop = nullptr;
+        double d = std::strtod(samplesWord.c_str(), &stop);
+        if (*stop || d != std::floor(d) || d < 0 || d > 1e6 || setting.name != "function") {
+            diags_.error(setting.location,
+                         "'" + setting.name + ":' expects a file name" +
+                             (setting.name == "function" ? std::string(" and a number of samples")
+                                                         : std::string()) +
+                             ", found '" + *text + "'");
+            return;
+        }
+        samples = static_cast<int>(d);
+    }
+    std::filesystem::path path(name);
+    if (path.is_relative())
+        path = std::filesystem::path(setting.location.file).parent_path() / path;
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        diags_.error(setting.location, "cannot open the function file '" + path.string() + "'");
+        return;
+    }
+    std::ostringstream bytes;
+    bytes << in.rdbuf();
+    try {
+        if (setting.name == "function set")
+            model_.lsystem.functions = parseFunctionSet(bytes.str(), path.string());
+        else
+            model_.lsystem.functions.push_back(
+                parseFunctionFile(bytes.str(), path.string(), samples));
+    } catch (const Error& e) {
+        for (const auto& d : e.diagnostics()) diags_.add(d);
+    }
 }
 
 void ModelBuilder::endOfInput(const SourceLocation&) {

@@ -129,6 +129,10 @@ std::size_t findLastTopLevel(std::string_view s, char c) {
 
 void Parser::run() {
     collectDeclarations();
+    // The preprocessor has expanded every macro already; its object-like macros stay known
+    // as the model's constants.
+    for (const auto& [k, v] : src_.defines)
+        if (!options_.defines.count(k)) defines_[k] = v;
     for (const auto& [k, v] : options_.defines) defines_[k] = v;
     target_.beginSource(src_.fileName, !sawLsystemHeader_);
     for (const auto& [k, v] : defines_) {

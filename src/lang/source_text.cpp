@@ -1,5 +1,6 @@
 #include "source_text.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cstdint>
 
@@ -152,13 +153,30 @@ bool startsWithAxiom(std::string_view line) {
     return head == "axiom";
 }
 
+// A line's spans, or the one span of a line read straight from the file.
+std::vector<SourceSpan> spansOf(const SourceText& text, const SourceLine& line) {
+    if (!line.spans.empty()) return line.spans;
+    return {SourceSpan{1, text.fileName, line.number, 1}};
+}
+
 }  // namespace
+
+SourceLocation SourceText::at(int line, int column) const {
+    auto it = std::lower_bound(lines.begin(), lines.end(), line,
+                               [](const SourceLine& l, int n) { return l.number < n; });
+    if (it == lines.end() || it->number != line || it->spans.empty() || column < 1)
+        return {fileName, line, column};
+    const SourceSpan* span = &it->spans.front();
+    for (const auto& s : it->spans)
+        if (s.column <= column) span = &s;
+    return {span->file, span->line, span->fileColumn + std::max(0, column - span->column)};
+}
 
 void joinBlockLines(SourceText& text) {
     std::vector<SourceLine> out;
     for (std::size_t i = 0; i < text.lines.size(); ++i) {
         SourceLine line = std::move(text.lines[i]);
-        std::vector<SourceText::Segment> segments{{0, line.number}};
+        bool joinedAny = false;
         const bool axiom = startsWithAxiom(line.text);
         while (i + 1 < text.lines.size()) {
             bool beforeArrow = false;
@@ -169,11 +187,16 @@ void joinBlockLines(SourceText& text) {
                              line.text.find_first_not_of(" \t\r\f\v") != std::string::npos;
             if (!openBlock && !continued) break;
             SourceLine& more = text.lines[++i];
+            if (!joinedAny) line.spans = spansOf(text, line);
+            joinedAny = true;
             line.text += ' ';
-            segments.push_back({line.text.size(), more.number});
+            int base = static_cast<int>(line.text.size());
+            for (SourceSpan s : spansOf(text, more)) {
+                s.column += base;
+                line.spans.push_back(std::move(s));
+            }
             line.text += more.text;
         }
-        if (segments.size() > 1) text.joined[line.number] = std::move(segments);
         out.push_back(std::move(line));
     }
     text.lines = std::move(out);

@@ -11,31 +11,29 @@
 
 namespace graftal {
 
+// Where a piece of a line came from, for lines the preprocessor produced or lines joined
+// into one: from `column` of the line on, the text is `file`'s line `line` from `fileColumn`.
+struct SourceSpan {
+    int column = 1;
+    std::string file;
+    int line = 0;
+    int fileColumn = 1;
+};
+
 struct SourceLine {
-    int number = 0;    // 1-based
-    std::string text;  // comments replaced by spaces
+    int number = 0;                 // 1-based
+    std::string text;               // comments replaced by spaces
+    std::vector<SourceSpan> spans;  // empty: the line is line `number` of the file
 };
 
 struct SourceText {
     std::string fileName;
-    std::vector<SourceLine> lines;
-    // Lines joined into one (a block spanning lines): for the joined line's number, where
-    // each physical line starts in its text and that line's number.
-    struct Segment {
-        std::size_t offset = 0;
-        int line = 0;
-    };
-    std::map<int, std::vector<Segment>> joined;
+    std::vector<SourceLine> lines;               // in increasing order of `number`
+    std::map<std::string, std::string> defines;  // object-like #defines the preprocessor saw
 
-    // `column` counts in the text of line `line`; joined lines map back to the file.
-    SourceLocation at(int line, int column) const {
-        auto it = joined.find(line);
-        if (it == joined.end() || column < 1) return {fileName, line, column};
-        const Segment* seg = &it->second.front();
-        for (const auto& s : it->second)
-            if (s.offset <= static_cast<std::size_t>(column - 1)) seg = &s;
-        return {fileName, seg->line, column - static_cast<int>(seg->offset)};
-    }
+    // The user's file, line and column of column `column` of the line numbered `line`
+    // (through the line's spans when it was preprocessed or joined).
+    SourceLocation at(int line, int column) const;
 };
 
 // A `//` comment starts at the beginning of a line or after white space when it is also

@@ -41,7 +41,7 @@ const std::vector<ViewLine>& viewLines() {
         {"projection", "projection", Kind::Text},
         {"twist", "twist", Kind::Twist},
         {"scale factor", "scale factor", Kind::Number},
-        {"tropism direction", "tropism direction", Kind::Vector},
+        {"tropism direction", "cpfg tropism direction", Kind::Vector},
         {"initial elasticity", "initial elasticity", Kind::Number},
         {"elasticity increment", "changing elasticities are not drawn yet", Kind::Ignored},
         {"tropism", "tropism", Kind::Tropism},
@@ -62,6 +62,8 @@ const std::vector<ViewLine>& viewLines() {
         {"front distance", "clipping planes are not read", Kind::Ignored},
         {"back distance", "clipping planes are not read", Kind::Ignored},
         {"line style", "line style", Kind::Text},
+        {"function", "function", Kind::Text},
+        {"function set", "function set", Kind::Text},
     };
     return lines;
 }
@@ -200,11 +202,6 @@ class ViewFileReader {
     void fields(std::size_t from, const std::string& setting) {
         std::optional<Vec3> direction;
         std::optional<double> elasticity, step;
-        if (setting == "tropism" && ++tropisms_ > 1) {
-            diags_.warning(at(from, text_.size()),
-                           "only the first 'tropism:' line is drawn; this one is ignored");
-            return;
-        }
         std::size_t start = from;
         while (from < text_.size()) {
             while (from < text_.size() && (isBlank(text_[from]) || text_[from] == ',')) ++from;
@@ -234,9 +231,10 @@ class ViewFileReader {
             diags_.error(at(start, text_.size()), "'" + setting + ":' needs a direction T: x,y,z");
             return;
         }
-        send(setting + " direction", *direction, start);
-        send(setting == "tropism" ? std::string("initial elasticity") : setting + " elasticity",
-             elasticity.value_or(0), start);
+        // Each `tropism:` line adds one to the others; `torque:` sets the one torque.
+        std::string name = setting == "tropism" ? std::string("tropism line") : setting;
+        send(name + " direction", *direction, start);
+        send(name + " elasticity", elasticity.value_or(0), start);
         if (step && *step != 0)
             diags_.warning(at(start, text_.size()),
                            "'" + setting + ":' S: (elasticity step) is read but not drawn yet");
@@ -254,7 +252,6 @@ class ViewFileReader {
     DiagnosticList& diags_;
     std::string_view text_;
     int number_ = 0;
-    int tropisms_ = 0;
 };
 
 }  // namespace

@@ -136,7 +136,8 @@ std::string applyViewSetting(ViewSettings& view, const ViewSetting& setting) {
     const Vec3* vector = std::get_if<Vec3>(&setting.value);
     const std::string* text = std::get_if<std::string>(&setting.value);
     if (kw == "viewpoint" || kw == "view reference point" || kw == "up vector" ||
-        kw == "light direction" || kw == "tropism direction" || kw == "torque direction") {
+        kw == "light direction" || kw == "tropism direction" || kw == "torque direction" ||
+        kw == "cpfg tropism direction" || kw == "tropism line direction") {
         if (!vector) return "'" + kw + ":' expects three numbers x, y, z";
         const Vec3& v = *vector;
         if (kw == "viewpoint") {
@@ -152,8 +153,12 @@ std::string applyViewSetting(ViewSettings& view, const ViewSetting& setting) {
         } else {
             double n = std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
             if (n == 0) return "the " + kw + " must not be zero";
-            (kw == "torque direction" ? view.torque : view.tropism) =
-                Vec3{v.x / n, v.y / n, v.z / n};
+            Vec3 unit{v.x / n, v.y / n, v.z / n};
+            if (kw == "tropism line direction")
+                view.tropisms.push_back({unit, 0});
+            else
+                (kw == "torque direction" ? view.torque : view.tropism) = unit;
+            if (kw == "cpfg tropism direction") view.cpfgTropism = true;
         }
         return "";
     }
@@ -196,7 +201,7 @@ std::string applyViewSetting(ViewSettings& view, const ViewSetting& setting) {
         }
         return "";
     }
-    bool known = false;
+    bool known = kw == "tropism line elasticity";  // the view file's `tropism:` lines
     for (const auto& n : viewSettingNames()) known = known || n == kw;
     if (!known) return "unknown view setting '" + kw + "'";
     if (!number) return "'" + kw + ":' expects a number";
@@ -238,6 +243,9 @@ std::string applyViewSetting(ViewSettings& view, const ViewSetting& setting) {
         (kw == "initial color" ? view.initialColor : view.colorIncrement) = static_cast<int>(d);
     } else if (kw == "twist") {
         view.twistDegrees = d;
+    } else if (kw == "tropism line elasticity") {
+        if (view.tropisms.empty()) return "an elasticity without a tropism direction";
+        view.tropisms.back().elasticity = d;
     } else if (kw == "torque elasticity") {
         view.torqueElasticity = d;
     } else if (kw == "music tempo") {

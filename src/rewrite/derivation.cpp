@@ -76,6 +76,7 @@ Derivation::Derivation(LSystem lsystem, DerivationOptions options)
             ctx.state = state_.data();
             ctx.print = &options_.print;
             ctx.files = files_.get();
+            ctx.functions = &lsystem_.functions;
             params[starts[a.module] + a.param] = a.value.evaluate({}, &ctx);
         }
     }

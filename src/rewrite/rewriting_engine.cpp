@@ -496,6 +496,7 @@ double RewritingEngine::evaluate(const Expression& e, const double* slots, Draws
     // warnings are not printed, so the output never depends on the thread count.
     ctx.print = mayPrint ? print_ : nullptr;
     ctx.files = mayPrint ? files_ : nullptr;
+    ctx.functions = &ls_.functions;
     return e.evaluate(vars, &ctx);
 }
 

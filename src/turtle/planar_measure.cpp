@@ -395,7 +395,7 @@ bool PlanarWalk::slowModule(TurtleOp op, std::span<const double> args) {
 
 bool staysPlanar(const Model& model) {
     const LSystem& ls = model.lsystem;
-    if (model.view.tropism && model.view.elasticity != 0) return false;
+    if (turtleIsBent(model.view)) return false;
     const std::array<TurtleOp, kMaxSymbols> ops = opTable(ls);
     for (Symbol s : ls.axiom.symbols())
         if (leavesPlane(ops[s])) return false;

@@ -82,6 +82,14 @@ StreamedMeasure turtle::measureGeneric(const Model& model, const ModuleString& m
     return m;
 }
 
+Bounds cpfgViewVolume(const Model& model, const ModuleString& modules) {
+    turtle::NullSink sink;
+    turtle::TurtleMachine<turtle::NullSink> machine(model, sink);
+    machine.trackViewVolume();
+    machine.run(modules);
+    return machine.viewVolume();
+}
+
 Scene interpretStreamed(const Model& model, int steps, const DerivationOptions& options) {
     const LSystem& ls = model.lsystem;
     Scene scene;

@@ -49,7 +49,7 @@ SubtreeSummaries::SubtreeSummaries(const Model& model, int steps, std::size_t me
     steps_ = steps < 0 ? ls.derivationLength : steps;
     symbolCount_ = ls.symbols.size();
     if (!streamingObstacle(ls).empty() || hasRandomOrParameters(ls) || drawsPolygons(ls) ||
-        (view_.tropism && view_.elasticity != 0))
+        (turtleIsBent(view_)))
         return;
     // One summary per symbol and string: keep the table small.
     const double entries = static_cast<double>(symbolCount_) * (steps_ + 1);

@@ -186,6 +186,14 @@ class TurtleMachine {
             elasticity_ = v.elasticity;
             hasTropism_ = true;
         }
+        // cpfg's movements before every move: the tropisms' sum and the torque.
+        for (const auto& m : v.tropisms)
+            movementTropism_ = movementTropism_ + m.direction * m.elasticity;
+        hasMovementTropism_ = length(movementTropism_) > 0;
+        if (v.torque && v.torqueElasticity != 0) {
+            torque_ = *v.torque * v.torqueElasticity;
+            hasTorque_ = true;
+        }
         sink_.baseWidth(state_.width);
     }
 
@@ -212,11 +220,19 @@ class TurtleMachine {
         if (op != TurtleOp::None) apply(op, args, index, s);
     }
 
+    // Collects cpfg's view volume (the `box` of its output) from here on; see viewVolume().
+    void trackViewVolume() { tracking_ = true; }
+    // cpfg's view volume: the turtle's position wherever cpfg ends a segment (before every
+    // move, at [ and before ] restores, at { } ~ and @, at the end), where @M lands, the
+    // square of @o (at z = 0) and @c, the cube of @O. Line widths do not count.
+    const Bounds& viewVolume() const { return viewVolume_; }
+
     // The state itself, for a walk that jumps over subtrees whose motion it knows
     // (subtree_summaries.hpp).
     TurtleState& state() { return state_; }
 
     void finish() {
+        note(state_.position);
         if (!polygons_.empty())
             throw Error(SourceLocation{ls_.file, 0, 0},
                         "the derived string leaves a '{' open (module " +
@@ -248,6 +264,10 @@ class TurtleMachine {
     // LSFP ch. 3.1 and SIGGRAPH '88 §3: after each segment the heading bends toward T by
     // alpha = e |H x T| (away from T when e < 0), a torque-like heuristic.
     void applyTropism() {
+        if (view_.cpfgTropism) {
+            applyCpfgTropism();
+            return;
+        }
         Vec3 axis = cross(state_.heading, tropism_);
         double n = length(axis);
         if (n < 1e-12) return;
@@ -258,7 +278,55 @@ class TurtleMachine {
         state_.up = cross(state_.heading, state_.left);
     }
 
+    // cpfg's tropism of a view file's `tropism direction:` line: H pitches toward T, then
+    // turns toward it, each by the angle whose sine is e times T's share along U, then L.
+    void applyCpfgTropism() {
+        auto bend = [&](Vec3& toward, double sine) {
+            sine = std::clamp(sine, -1.0, 1.0);
+            rotatePair(state_.heading, toward, std::sqrt(1 - sine * sine), sine);
+        };
+        bend(state_.up, elasticity_ * dot(tropism_, state_.up));
+        bend(state_.left, elasticity_ * dot(tropism_, state_.left));
+    }
+
+    // cpfg's movements, before every F, G, f and g: the `tropism:` lines turn H toward
+    // their sum V by min(1, |H x V|) radians (the frame turns with it), then the torque
+    // rolls the turtle about H, turning its up vector toward the torque's part across H.
+    void applyMovements() {
+        if (hasMovementTropism_) {
+            Vec3 axis = cross(state_.heading, movementTropism_);
+            double n = length(axis);
+            if (n >= 1e-6) {
+                double angle = std::min(n, 1.0);
+                axis = axis * (1 / n);
+                state_.heading = normalized(rotateAbout(state_.heading, axis, angle));
+                state_.left = normalized(rotateAbout(state_.left, axis, angle));
+                state_.up = cross(state_.heading, state_.left);
+            }
+        }
+        if (hasTorque_) {
+            double strength = length(torque_);
+            Vec3 across = cross(state_.heading, torque_ * (1 / strength));
+            if (dot(across, across) > 1e-8) {
+                Vec3 wanted = cross(across, state_.heading) * strength;
+                Vec3 axis = cross(state_.up, wanted);
+                double n = length(axis);
+                if (n >= 1e-7) {
+                    state_.up =
+                        normalized(rotateAbout(state_.up, axis * (1 / n), std::min(n, 1.0)));
+                    state_.left = cross(state_.up, state_.heading);
+                }
+            }
+        }
+    }
+
+    void note(const Vec3& p) {
+        if (tracking_) viewVolume_.extend(p);
+    }
+
     void forward(double length, bool draw, bool vertex) {
+        note(state_.position);
+        if (hasMovementTropism_ || hasTorque_) applyMovements();
         Vec3 from = state_.position;
         state_.position = from + state_.heading * length;
         // A plant is 3D when its geometry leaves the z = 0 plane, not merely because it
@@ -328,9 +396,11 @@ class TurtleMachine {
                 rollToVertical();
                 break;
             case TurtleOp::AtPrefix:
+                note(state_.position);
                 atPending_ = true;
                 break;
             case TurtleOp::Push: {
+                note(state_.position);
                 stack_.push_back(state_);
                 state_.lastSegment = kNoSegment;  // a branch is a new axis
                 break;
@@ -341,15 +411,18 @@ class TurtleMachine {
                                 "']' at module " + std::to_string(index) +
                                     " of the derived string pops an empty turtle stack "
                                     "(more ']' than '[')");
+                note(state_.position);
                 state_ = stack_.back();
                 stack_.pop_back();
                 break;
             case TurtleOp::PolygonBegin:
+                note(state_.position);
                 polygons_.emplace_back();
                 polygons_.back().push_back(state_.position);
                 polygonOpenedAt_.push_back(index);
                 break;
             case TurtleOp::PolygonEnd:
+                note(state_.position);
                 if (polygons_.empty())
                     throw Error(SourceLocation{ls_.file, 0, 0},
                                 "'}' at module " + std::to_string(index) +
@@ -377,6 +450,7 @@ class TurtleMachine {
                     state_.color = colorIndex(state_.color - view_.colorIncrement);
                 break;
             case TurtleOp::Surface:
+                note(state_.position);
                 placeSurface(symbol, args);
                 break;
         }
@@ -418,6 +492,12 @@ class TurtleMachine {
             case 'c':
             case 'O': {
                 double d = args.empty() ? state_.width : args[0];
+                if (tracking_) {
+                    Vec3 p = state_.position, h{d / 2, d / 2, s == 'O' ? d / 2 : 0};
+                    if (s == 'o') p.z = 0;
+                    note(p - h);
+                    note(p + h);
+                }
                 if (s == 'O') {
                     mark3D();
                     sink_.sphere(Sphere{state_.position, d / 2, state_.color});
@@ -441,6 +521,7 @@ class TurtleMachine {
         state_.position.x = args[0];
         state_.position.y = args[1];
         if (args.size() >= 3) state_.position.z = args[2];
+        note(state_.position);
         if (!is3D_ && std::fabs(state_.position.z) > 1e-9) mark3D();
         state_.lastSegment = kNoSegment;  // a jump starts a new axis
     }
@@ -496,6 +577,12 @@ class TurtleMachine {
     Vec3 tropism_{0, -1, 0};
     double elasticity_ = 0;
     bool hasTropism_ = false;
+    bool tracking_ = false;
+    Bounds viewVolume_;
+    Vec3 movementTropism_{0, 0, 0};
+    bool hasMovementTropism_ = false;
+    Vec3 torque_{0, 0, 0};
+    bool hasTorque_ = false;
     bool is3D_ = false;
     bool atPending_ = false;  // the last module was an @
     std::uint64_t rotations_ = 0;

@@ -1,0 +1,586 @@
+// Runs mcpp on a .l file and maps its output back to the user's files (see the header).
+//
+// Three things stand between the .l language and a C preprocessor, and are dealt with
+// before mcpp sees the text:
+// - comments: the .l rules (source_text.cpp) blank them first, so that `F//&&leaf` keeps
+//   its two roll modules instead of losing the rest of the line to a `//` comment;
+// - `'` is a module, not the start of a character constant, and the `//` pairs left after
+//   the comments are modules too: both are shielded as private-use characters, which mcpp
+//   copies through untouched, and restored in its output;
+// - #include: every included file gets the same treatment, so each file of the model is
+//   copied, shielded, into a temporary folder and its #include lines are pointed at the
+//   copies. The copies keep their lines, so mcpp's line markers (`#line N "copy"`) map
+//   back to the user's file and line through the table of copies.
+//
+// mcpp keeps its state in globals and cannot be stopped from outside once it runs, while a
+// macro such as `#define B A+A` nested a few dozen times expands without end in practice.
+// So it runs in a child process: the parent reads its output through pipes, stops it when
+// the output passes the size limit or the time limit, and the library's own globals never
+// live in this process. A mutex serialises the runs.
+#include "preprocessor.hpp"
+
+extern "C" {
+#include <mcpp_lib.h>
+}
+#include <poll.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <chrono>
+#include <cstdarg>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <sstream>
+#include <vector>
+
+namespace graftal {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr std::size_t kMaxPreprocessedBytes = 64u << 20;   // 64 MiB
+constexpr std::size_t kPreprocessedPerInputByte = 16;      // ... or 16 bytes per input byte
+constexpr std::size_t kMinPreprocessedLimit = 256u << 10;  // ... plus 256 KiB
+constexpr std::size_t kMaxMessageBytes = 1u << 20;         // mcpp's messages kept
+constexpr auto kTimeLimit = std::chrono::seconds(60);
+
+// U+E000 and U+E001 (private use): what `'` and a `/` before another `/` become for mcpp.
+constexpr std::string_view kQuoteShield = "\xEE\x80\x80";
+constexpr std::string_view kSlashShield = "\xEE\x80\x81";
+
+std::mutex gMcppMutex;
+
+std::string shield(std::string_view text) {
+    std::string out;
+    out.reserve(text.size() + text.size() / 8);
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        char c = text[i];
+        if (c == '\'')
+            out += kQuoteShield;
+        else if (c == '/' && i + 1 < text.size() && text[i + 1] == '/')
+            out += kSlashShield;
+        else
+            out += c;
+    }
+    return out;
+}
+
+void replaceAll(std::string& s, std::string_view from, std::string_view to) {
+    for (std::size_t p = s.find(from); p != std::string::npos; p = s.find(from, p + to.size()))
+        s.replace(p, from.size(), to);
+}
+
+std::string unshield(std::string s) {
+    replaceAll(s, kQuoteShield, "'");
+    replaceAll(s, kSlashShield, "/");
+    return s;
+}
+
+std::size_t skipBlanks(std::string_view s, std::size_t i) {
+    while (i < s.size() && (s[i] == ' ' || s[i] == '\t')) ++i;
+    return i;
+}
+
+std::size_t identifierEnd(std::string_view s, std::size_t i) {
+    while (i < s.size() && (std::isalnum(static_cast<unsigned char>(s[i])) || s[i] == '_')) ++i;
+    return i;
+}
+
+// The directive of a line (`define`, `include`, ...) and where its operand starts; empty
+// when the line is not a directive.
+std::string_view directiveOf(std::string_view line, std::size_t& operand) {
+    std::size_t i = skipBlanks(line, 0);
+    if (i >= line.size() || line[i] != '#') return {};
+    i = skipBlanks(line, i + 1);
+    std::size_t e = identifierEnd(line, i);
+    operand = skipBlanks(line, e);
+    return line.substr(i, e - i);
+}
+
+// One file of the model, copied (comments blanked, shielded) for mcpp.
+struct CopiedFile {
+    fs::path copy;        // in the temporary folder
+    std::string display;  // how locations name it
+};
+
+// The temporary folder and the copies in it; removed when the run ends.
+class Workspace {
+  public:
+    explicit Workspace(const PreprocessOptions& options, DiagnosticList& diags)
+        : options_(options), diags_(diags) {
+        std::string pattern = (fs::temp_directory_path() / "graftal-cpp-XXXXXX").string();
+        if (::mkdtemp(pattern.data())) dir_ = pattern;
+    }
+    ~Workspace() {
+        std::error_code ec;
+        if (!dir_.empty()) fs::remove_all(dir_, ec);
+    }
+    Workspace(const Workspace&) = delete;
+    Workspace& operator=(const Workspace&) = delete;
+
+    bool ready() const { return !dir_.empty(); }
+
+    // Copies `text` (the contents of `display`, found at `path` when it is a file) and,
+    // recursively, the files it includes. Returns the copy's path, or empty on failure.
+    fs::path add(std::string_view text, const fs::path& path, const std::string& display,
+                 bool isMain) {
+        std::error_code ec;
+        std::string key = path.empty() ? std::string() : fs::weakly_canonical(path, ec).string();
+        if (!key.empty()) {
+            if (auto it = byKey_.find(key); it != byKey_.end()) return files_[it->second].copy;
+        }
+        SourceText src;
+        if (!prepareSource(text, display, src, diags_)) return {};
+        std::size_t index = files_.size();
+        fs::path copy = dir_ / (std::to_string(index) + (isMain ? ".l" : ".h"));
+        files_.push_back({copy, display});
+        if (!key.empty()) byKey_[key] = index;
+
+        fs::path folder = path.empty() ? fs::path() : path.parent_path();
+        fs::path displayFolder = fs::path(display).parent_path();
+        std::string body;
+        for (const auto& line : src.lines) {
+            std::string text2 = shield(line.text);
+            std::size_t operand = 0;
+            std::string_view directive = directiveOf(text2, operand);
+            if (directive == "define" || directive == "undef") {
+                std::string name(text2.substr(operand, identifierEnd(text2, operand) - operand));
+                if (options_.defines.count(name)) text2.clear();  // the command line wins
+            } else if (directive == "include" && operand < text2.size() && text2[operand] == '"') {
+                std::size_t close = text2.find('"', operand + 1);
+                if (close != std::string::npos) {
+                    std::string name = unshield(text2.substr(operand + 1, close - operand - 1));
+                    fs::path target = fs::path(name).is_absolute() ? fs::path(name) : folder / name;
+                    std::ifstream in(target, std::ios::binary);
+                    if (in && !fs::is_directory(target, ec)) {
+                        std::ostringstream ss;
+                        ss << in.rdbuf();
+                        std::string shown =
+                            fs::path(name).is_absolute()
+                                ? name
+                                : (displayFolder / name).lexically_normal().string();
+                        fs::path included = add(ss.str(), target, shown, false);
+                        if (included.empty()) return {};
+                        text2 = text2.substr(0, operand) + "\"" + included.string() + "\"" +
+                                text2.substr(close + 1);
+                    }
+                    // A missing file is left to mcpp, which reports it where it is included
+                    // (and only when the #include is not skipped by an #if).
+                }
+            }
+            body += text2;
+            body += '\n';
+        }
+        if (isMain) body += "#pragma MCPP put_defines\n";
+        std::ofstream out(copy, std::ios::binary);
+        out << body;
+        if (!out) {
+            diags_.error({display, 0, 0}, "cannot write the preprocessor's temporary copy");
+            return {};
+        }
+        return copy;
+    }
+
+    // The user's name of a copy mcpp names in its output or messages; empty if unknown.
+    const std::string* displayOf(std::string_view copyPath) const {
+        for (const auto& f : files_)
+            if (f.copy.string() == copyPath) return &f.display;
+        return nullptr;
+    }
+
+  private:
+    const PreprocessOptions& options_;
+    DiagnosticList& diags_;
+    fs::path dir_;
+    std::vector<CopiedFile> files_;
+    std::map<std::string, std::size_t> byKey_;
+};
+
+// ---- the child process ----------------------------------------------------------------
+
+// In the child, mcpp's output and messages go straight to the pipes.
+int gChildFd[2] = {-1, -1};
+
+void writeAll(int fd, const char* p, std::size_t n) {
+    while (n > 0) {
+        ssize_t w = ::write(fd, p, n);
+        if (w < 0) {
+            if (errno == EINTR) continue;
+            ::_exit(3);  // the parent stopped listening
+        }
+        p += w;
+        n -= static_cast<std::size_t>(w);
+    }
+}
+
+int childFd(OUTDEST od) {
+    return od == OUT ? gChildFd[0] : gChildFd[1];
+}
+
+extern "C" int childPutc(int c, OUTDEST od) {
+    char ch = static_cast<char>(c);
+    writeAll(childFd(od), &ch, 1);
+    return c;
+}
+
+extern "C" int childPuts(const char* s, OUTDEST od) {
+    writeAll(childFd(od), s, std::strlen(s));
+    return 0;
+}
+
+extern "C" int childPrintf(OUTDEST od, const char* format, ...) {
+    char small[1024];
+    va_list args;
+    va_start(args, format);
+    int n = std::vsnprintf(small, sizeof small, format, args);
+    va_end(args);
+    if (n < 0) return n;
+    if (static_cast<std::size_t>(n) < sizeof small) {
+        writeAll(childFd(od), small, static_cast<std::size_t>(n));
+    } else {
+        std::vector<char> big(static_cast<std::size_t>(n) + 1);
+        va_start(args, format);
+        std::vsnprintf(big.data(), big.size(), format, args);
+        va_end(args);
+        writeAll(childFd(od), big.data(), static_cast<std::size_t>(n));
+    }
+    return n;
+}
+
+struct McppRun {
+    std::string output, messages;
+    bool tooLarge = false, tooSlow = false, failed = false;
+};
+
+McppRun runMcpp(std::vector<std::string> args, std::size_t maxOutput) {
+    McppRun run;
+    int outPipe[2], errPipe[2];
+    if (::pipe(outPipe) != 0) {
+        run.failed = true;
+        return run;
+    }
+    if (::pipe(errPipe) != 0) {
+        ::close(outPipe[0]);
+        ::close(outPipe[1]);
+        run.failed = true;
+        return run;
+    }
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+
+    pid_t pid = ::fork();
+    if (pid == 0) {
+        // The child only runs mcpp: a crash there must end the child, not run the handlers
+        // the host installed (a fuzzer's or a sanitizer's would report the host's input).
+        for (int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT, SIGTERM, SIGINT})
+            ::signal(sig, SIG_DFL);
+        ::close(outPipe[0]);
+        ::close(errPipe[0]);
+        gChildFd[0] = outPipe[1];
+        gChildFd[1] = errPipe[1];
+        mcpp_set_out_func(childPutc, childPuts, childPrintf);
+        mcpp_lib_main(static_cast<int>(argv.size()) - 1, argv.data());
+        ::_exit(0);
+    }
+    ::close(outPipe[1]);
+    ::close(errPipe[1]);
+    if (pid < 0) {
+        ::close(outPipe[0]);
+        ::close(errPipe[0]);
+        run.failed = true;
+        return run;
+    }
+
+    auto deadline = std::chrono::steady_clock::now() + kTimeLimit;
+    pollfd fds[2] = {{outPipe[0], POLLIN, 0}, {errPipe[0], POLLIN, 0}};
+    bool open[2] = {true, true};
+    char buffer[65536];
+    bool stopped = false;
+    while (open[0] || open[1]) {
+        auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+            deadline - std::chrono::steady_clock::now());
+        if (left.count() <= 0) {
+            run.tooSlow = true;
+            break;
+        }
+        for (int k = 0; k < 2; ++k) fds[k].fd = open[k] ? (k == 0 ? outPipe[0] : errPipe[0]) : -1;
+        int ready = ::poll(fds, 2, static_cast<int>(std::min<long long>(left.count(), 1000)));
+        if (ready < 0 && errno != EINTR) break;
+        for (int k = 0; k < 2; ++k) {
+            if (!open[k] || !(fds[k].revents & (POLLIN | POLLHUP | POLLERR))) continue;
+            ssize_t n = ::read(fds[k].fd, buffer, sizeof buffer);
+            if (n <= 0) {
+                if (n < 0 && errno == EINTR) continue;
+                open[k] = false;
+                continue;
+            }
+            std::string& sink = k == 0 ? run.output : run.messages;
+            std::size_t limit = k == 0 ? maxOutput : kMaxMessageBytes;
+            std::size_t room = sink.size() < limit ? limit - sink.size() : 0;
+            sink.append(buffer, std::min(room, static_cast<std::size_t>(n)));
+            if (k == 0 && static_cast<std::size_t>(n) > room) run.tooLarge = true;
+        }
+        if (run.tooLarge) break;
+    }
+    if (run.tooLarge || run.tooSlow) {
+        ::kill(pid, SIGKILL);
+        stopped = true;
+    }
+    ::close(outPipe[0]);
+    ::close(errPipe[0]);
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    if (!stopped && !(WIFEXITED(status) && WEXITSTATUS(status) == 0)) run.failed = true;
+    return run;
+}
+
+// ---- reading mcpp's output back -------------------------------------------------------
+
+// `#line 12 "/tmp/.../0.l"` (mcpp's form) or `# 12 "file"`.
+bool parseLineMarker(std::string_view line, int& number, std::string& file) {
+    std::size_t i = skipBlanks(line, 0);
+    if (i >= line.size() || line[i] != '#') return false;
+    i = skipBlanks(line, i + 1);
+    if (line.compare(i, 4, "line") == 0) i = skipBlanks(line, i + 4);
+    std::size_t d = i;
+    while (d < line.size() && std::isdigit(static_cast<unsigned char>(line[d]))) ++d;
+    if (d == i) return false;
+    number = std::atoi(std::string(line.substr(i, d - i)).c_str());
+    std::size_t q = line.find('"', d);
+    if (q != std::string_view::npos) {
+        std::size_t e = line.find('"', q + 1);
+        if (e != std::string_view::npos) file = std::string(line.substr(q + 1, e - q - 1));
+    }
+    return true;
+}
+
+// `#define NAME body \t/* file:line\t*/` from put_defines: user-defined object-like macros.
+void readDefinition(std::string_view line, std::map<std::string, std::string>& defines) {
+    std::size_t operand = 0;
+    if (directiveOf(line, operand) != "define") return;
+    if (line.find("(predefined)") != std::string_view::npos) return;
+    std::size_t nameEnd = identifierEnd(line, operand);
+    if (nameEnd == operand || (nameEnd < line.size() && line[nameEnd] == '(')) return;
+    std::string_view body = line.substr(nameEnd);
+    std::size_t where = body.rfind("/*");
+    if (where != std::string_view::npos) body = body.substr(0, where);
+    std::size_t a = body.find_first_not_of(" \t");
+    std::size_t b = body.find_last_not_of(" \t");
+    std::string value = a == std::string_view::npos ? "" : std::string(body.substr(a, b - a + 1));
+    defines[std::string(line.substr(operand, nameEnd - operand))] =
+        value.empty() ? "1" : unshield(value);
+}
+
+// mcpp's messages: "path:line: error: text" followed by indented context lines.
+void readMessages(const std::string& messages, const Workspace& ws, const std::string& mainName,
+                  DiagnosticList& diags) {
+    std::istringstream in(messages);
+    std::string line;
+    while (std::getline(in, line)) {
+        if (line.empty() || line[0] == ' ' || line[0] == '\t') continue;
+        Severity severity;
+        std::size_t tag;
+        if ((tag = line.find(": fatal error: ")) != std::string::npos ||
+            (tag = line.find(": error: ")) != std::string::npos)
+            severity = Severity::Error;
+        else if ((tag = line.find(": warning: ")) != std::string::npos)
+            severity = Severity::Warning;
+        else
+            continue;
+        std::string where = line.substr(0, tag);
+        std::string text = unshield(line.substr(line.find(": ", tag + 2) + 2));
+        std::size_t colon = where.rfind(':');
+        SourceLocation loc{mainName, 0, 0};
+        if (colon != std::string::npos) {
+            const std::string* shown = ws.displayOf(std::string_view(where).substr(0, colon));
+            if (shown) loc.file = *shown;
+            loc.line = std::atoi(where.c_str() + colon + 1);
+            if (loc.line > 0) loc.column = 1;
+        }
+        if (text.rfind("Buffer overflow", 0) == 0 || text.rfind("Too many nested macros", 0) == 0)
+            text = "a macro expands to more text than one line may hold (" + text +
+                   "): is a macro defined in terms of another several times over?";
+        else if (text.find("nesting of #include") != std::string::npos)
+            text =
+                "#include cycle: a file includes itself, directly or through others (" + text + ")";
+        else if (text.rfind("#error", 0) != 0 && severity == Severity::Error)
+            text = "preprocessor: " + text;
+        bool repeated = false;  // mcpp may say the same thing twice
+        for (const auto& d : diags.items())
+            repeated = repeated || (d.message == text && d.location.file == loc.file &&
+                                    d.location.line == loc.line);
+        if (!repeated) diags.add({severity, loc, text});
+    }
+}
+
+// One line of mcpp's output with its macro annotations (-K) taken out. Annotations mark
+// every expansion (`/*<NAME l:c-l:c*/ ... /*>*/`, the call's place in the source), so the
+// text outside expansions keeps its own columns and an expansion maps to its call.
+// `endLine` receives the last source line a call on this line reaches (a call over
+// several lines).
+SourceLine stripAnnotations(const std::string& line, const std::string& file, int fileLine,
+                            int& endLine) {
+    SourceLine out;
+    out.spans.push_back({1, file, fileLine, 1});
+    endLine = fileLine;
+    int depth = 0, l1 = 0, c1 = 0;
+    for (std::size_t i = 0; i < line.size();) {
+        if (line.compare(i, 2, "/*") == 0) {
+            std::size_t close = line.find("*/", i + 2);
+            if (close != std::string::npos) {
+                std::string note = line.substr(i + 2, close - i - 2);
+                int column = static_cast<int>(out.text.size()) + 1;
+                int l0 = 0, c0 = 0;
+                std::size_t space = note.find(' ');
+                if (!note.empty() && note[0] == '<' && depth++ == 0 && space != std::string::npos &&
+                    std::sscanf(note.c_str() + space + 1, "%d:%d-%d:%d", &l0, &c0, &l1, &c1) == 4) {
+                    out.spans.push_back({column, file, l0, c0});
+                    endLine = std::max(endLine, l1);
+                } else if (note == ">" && depth > 0 && --depth == 0 && l1 > 0) {
+                    out.spans.push_back({column, file, l1, c1});  // the text after the call
+                }
+                i = close + 2;
+                continue;
+            }
+        }
+        out.text += line[i++];
+    }
+    out.text = unshield(std::move(out.text));
+    return out;
+}
+
+// The preprocessed lines, each mapped back through the last line marker, and the macros
+// put_defines lists at the end.
+void readOutput(const std::string& output, const Workspace& ws, const std::string& mainName,
+                SourceText& out) {
+    out.fileName = mainName;
+    out.lines.clear();
+    out.defines.clear();
+    std::istringstream in(output);
+    std::string line, file = mainName;
+    int fileLine = 1, callEnd = 0;
+    bool started = false, inDefinitions = false;
+    while (std::getline(in, line)) {
+        int number = 0;
+        std::string copy;
+        if (inDefinitions) {
+            readDefinition(line, out.defines);
+            continue;
+        }
+        if (parseLineMarker(line, number, copy)) {
+            if (!copy.empty()) {
+                const std::string* shown = ws.displayOf(copy);
+                file = shown ? *shown : copy;
+            }
+            fileLine = number;
+            started = true;
+            continue;
+        }
+        if (!started) continue;  // notes on predefined macros
+        if (line == "/* Currently defined macros. */") {
+            inDefinitions = true;
+            continue;
+        }
+        int endLine = 0;
+        SourceLine sl = stripAnnotations(line, file, fileLine, endLine);
+        if (!out.lines.empty() && fileLine <= callEnd &&
+            out.lines.back().spans.front().file == file) {
+            // the rest of a macro call that began on an earlier line: cpfg sees one line
+            SourceLine& into = out.lines.back();
+            int base = static_cast<int>(into.text.size()) + 1;
+            into.text += sl.text;
+            for (SourceSpan s2 : sl.spans) {
+                s2.column += base - 1;
+                into.spans.push_back(std::move(s2));
+            }
+        } else {
+            sl.number = static_cast<int>(out.lines.size()) + 1;
+            out.lines.push_back(std::move(sl));
+        }
+        if (endLine > fileLine)
+            callEnd = endLine;
+        else if (fileLine >= callEnd)
+            callEnd = 0;
+        ++fileLine;
+    }
+}
+
+}  // namespace
+
+bool needsPreprocessing(std::string_view text, const PreprocessOptions& options) {
+    if (!options.defines.empty()) return true;
+    std::size_t start = 0;
+    while (start <= text.size()) {
+        std::size_t end = text.find('\n', start);
+        if (end == std::string_view::npos) end = text.size();
+        std::size_t i = skipBlanks(text, start);
+        if (i < end && text[i] == '#') return true;
+        start = end + 1;
+    }
+    return false;
+}
+
+bool preprocessSource(std::string_view text, const PreprocessOptions& options, SourceText& out,
+                      DiagnosticList& diags) {
+    const std::string& mainName = options.fileName;
+    Workspace ws(options, diags);
+    if (!ws.ready()) {
+        diags.error({mainName, 0, 0}, "cannot create a temporary folder for the preprocessor");
+        return false;
+    }
+    std::size_t errorsBefore = 0;
+    for (const auto& d : diags.items()) errorsBefore += d.severity == Severity::Error;
+    fs::path mainCopy =
+        ws.add(text, mainName.empty() ? fs::path() : fs::path(mainName), mainName, true);
+    if (mainCopy.empty()) return false;
+
+    std::size_t limit = options.maxOutputBytes;
+    if (limit == 0)
+        limit = std::min(kMaxPreprocessedBytes,
+                         kMinPreprocessedLimit + kPreprocessedPerInputByte * text.size());
+
+    std::vector<std::string> args = {"graftal-cpp", "-e", "utf8", "-k", "-K", "-N", "-I-"};
+    for (const auto& [name, value] : options.defines) {
+        args.push_back("-D");
+        args.push_back(name + "=" + shield(value));
+    }
+    args.push_back(mainCopy.string());
+
+    McppRun run;
+    {
+        std::lock_guard<std::mutex> lock(gMcppMutex);
+        run = runMcpp(std::move(args), limit);
+    }
+    readMessages(run.messages, ws, mainName, diags);
+
+    readOutput(run.output, ws, mainName, out);
+    if (run.tooLarge) {
+        SourceLocation at =
+            out.lines.empty() ? SourceLocation{mainName, 1, 1} : out.at(out.lines.back().number, 1);
+        diags.error(at, "the preprocessed text grows past " + std::to_string(limit >> 10) +
+                            " KiB here: a macro expands to too much text (is it defined in "
+                            "terms of another several times over?)");
+    } else if (run.tooSlow) {
+        diags.error({mainName, 0, 0}, "the preprocessor took longer than " +
+                                          std::to_string(kTimeLimit.count()) +
+                                          " seconds; stopped (macros expanding without end?)");
+    } else if (run.failed) {
+        diags.error({mainName, 0, 0}, "the preprocessor (mcpp) could not be run");
+    }
+    std::size_t errorsAfter = 0;
+    for (const auto& d : diags.items()) errorsAfter += d.severity == Severity::Error;
+    return errorsAfter == errorsBefore;
+}
+
+}  // namespace graftal
