@@ -85,6 +85,7 @@ DeriveRequest deriveRequest(const InputOptions& in) {
     r.memoryLimit = in.memoryLimit;
     r.stream = in.stream ? StreamPolicy::Always : StreamPolicy::Auto;
     r.streamLimit = in.streamLimit;
+    r.precision = in.precision;
     // printf in a model writes to standard error, as cpfg's does (standard output may
     // carry the derived string).
     r.print = [](std::string_view text) {
@@ -206,10 +207,18 @@ namespace {
 
 class PrintingSink : public ModuleSink {
   public:
-    explicit PrintingSink(const SymbolTable& t) : table_(t) { buffer_.reserve(1 << 16); }
+    PrintingSink(const SymbolTable& t, Precision precision) : table_(t), precision_(precision) {
+        buffer_.reserve(1 << 16);
+    }
     ~PrintingSink() override { flush(); }
     void module(Symbol s, std::span<const double> params) override {
-        appendModuleText(buffer_, table_, s, params);
+        if (precision_ == Precision::Single) {
+            // The values came from floats: print them as the held string would.
+            singles_.assign(params.begin(), params.end());
+            appendModuleText(buffer_, table_, s, ParamView(singles_.data(), singles_.size()));
+        } else {
+            appendModuleText(buffer_, table_, s, params);
+        }
         if (buffer_.size() > (1 << 16) - 512) flush();
     }
     void flush() {
@@ -219,7 +228,9 @@ class PrintingSink : public ModuleSink {
 
   private:
     const SymbolTable& table_;
+    Precision precision_;
     std::string buffer_;
+    std::vector<float> singles_;
 };
 
 }  // namespace
@@ -228,7 +239,7 @@ int runDerive(const InputOptions& in, bool homomorphism) {
     Loaded l = loadInput(in);
     if (chooseStreaming(l, in, !homomorphism)) {
         {
-            PrintingSink out(l.model.lsystem.symbols);
+            PrintingSink out(l.model.lsystem.symbols, in.precision);
             streamDerivation(l.model.lsystem, l.steps, out, derivationOptions(in, l.model));
         }
         std::cout << '\n';
@@ -311,6 +322,25 @@ int runStats(const InputOptions& in, bool geometry, bool predict) {
             j["polygons"] = m.polygons;
             j["bbox"] = bboxJson(m.bounds);
         }
+        std::cout << j.dump(2) << '\n';
+        return 0;
+    }
+    if (!geometry && l.steps > 0) {
+        // Symbol counts alone: the last step is counted without being written, which
+        // halves the memory (and the fresh pages) the derivation needs.
+        Derivation d(l.model, derivationOptions(in, l.model));
+        d.run(l.steps - 1);
+        std::vector<std::uint64_t> counts = d.countNextStep();
+        if (counts.empty()) {
+            d.step();
+            d.finish();
+            counts = countSymbols(d.current(), l.model.lsystem.symbols.size(), in.threads);
+        }
+        endProgressLine();
+        std::uint64_t total = 0;
+        for (std::uint64_t c : counts) total += c;
+        j["modules"] = total;
+        j["symbols"] = symbolsJson(l.model.lsystem.symbols, counts);
         std::cout << j.dump(2) << '\n';
         return 0;
     }

@@ -39,6 +39,12 @@ void addInputOptions(CLI::App& cmd, graftal::cli::InputOptions& in, std::string&
     cmd.add_flag("-q,--quiet", in.quiet, "no notes or warnings on stderr");
     cmd.add_option("--stream-limit", in.streamLimit,
                    "largest string (modules) streamed when it does not fit in memory (1e11)");
+    cmd.add_option("--precision", in.precision,
+                   "how parameters are stored: single (32-bit floats, as cpfg; default) or double")
+        ->transform(CLI::CheckedTransformer(
+            std::map<std::string, graftal::Precision>{{"single", graftal::Precision::Single},
+                                                      {"double", graftal::Precision::Double}},
+            CLI::ignore_case));
 }
 
 // What an option's value must be, in the words of its message.
