@@ -7,11 +7,15 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "graftal/derivation.hpp"
+#include "process.hpp"
 #include "test_helpers.hpp"
 
 using namespace graftal;
 using graftal::testing::parse;
+using graftal::testing::runGraftal;
 
 namespace {
 
@@ -155,4 +159,36 @@ TEST(ParametricPrecision, CountingTheNextStepMeetsTheMemoryLimit) {
     Derivation d(ls, o);
     d.run(9);
     EXPECT_THROW(d.countNextStep(), Error);
+}
+
+// The command line: --precision picks the storage, the streamed string prints as the held
+// one, a bad value is refused, and `stats --no-geometry` (the last step counted) gives the
+// counts of `stats` (which walks the whole string with the turtle).
+TEST(ParametricPrecision, CommandLine) {
+    const std::string honda = benchModel("honda-2.6a.l");
+    auto single = runGraftal("derive " + honda + " -n 1 -q");
+    ASSERT_EQ(single.status, 0) << single.err;
+    EXPECT_EQ(single.out, "!(10)F(1)[&(45)B(0.6,7.07)]/(137.5)A(0.9,7.07)\n");
+    auto dbl = runGraftal("derive " + honda + " -n 1 -q --precision double");
+    EXPECT_EQ(dbl.out,
+              "!(10)F(1)[&(45)B(0.6,7.069999999999999)]/(137.5)A(0.9,7.069999999999999)\n");
+    for (const char* p : {"", " --precision double"}) {
+        auto held = runGraftal("derive " + honda + " -n 6 -q" + p);
+        auto streamed = runGraftal("derive " + honda + " -n 6 -q --stream" + p);
+        EXPECT_EQ(streamed.out, held.out) << p;
+    }
+    auto bad = runGraftal("derive " + honda + " -n 1 --precision half");
+    EXPECT_NE(bad.status, 0);
+    EXPECT_NE(bad.err.find("--precision"), std::string::npos) << bad.err;
+    EXPECT_TRUE(bad.out.empty());
+
+    for (const char* file : {"honda-2.6a.l", "param-conditions.l", "param-context.l"}) {
+        auto counted = runGraftal("stats " + benchModel(file) + " -n 12 -q --no-geometry");
+        auto walked = runGraftal("stats " + benchModel(file) + " -n 12 -q");
+        ASSERT_EQ(counted.status, 0) << counted.err;
+        ASSERT_EQ(walked.status, 0) << walked.err;
+        auto c = nlohmann::json::parse(counted.out), w = nlohmann::json::parse(walked.out);
+        EXPECT_EQ(c["modules"], w["modules"]) << file;
+        EXPECT_EQ(c["symbols"], w["symbols"]) << file;
+    }
 }
