@@ -1,8 +1,9 @@
 // The derivation alone, timed inside one process (bench/run.sh, the "in-process" column):
 //
-//   derive_timing FILE STEPS [REPEATS]
+//   derive_timing FILE STEPS [REPEATS] [single|double]
 //
-// Loads FILE, derives STEPS steps REPEATS times (default 5) with the library's derive(),
+// Loads FILE, derives STEPS steps REPEATS times (default 5) with the library's derive()
+// (parameters stored as the last argument says; default single), every step written in full,
 // and prints one line of JSON: {"modules": ..., "first_s": ..., "warm_s": ...}. first_s is
 // the first derivation, which maps its buffers fresh from the kernel; warm_s is the fastest
 // of the others, whose buffers land on memory the process has just given back. The gap
@@ -14,6 +15,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <string>
 
 #include "graftal/graftal.hpp"
 
@@ -28,6 +30,8 @@ int main(int argc, char** argv) {
         graftal::LSystem ls = graftal::loadLSystem(argv[1]);
         graftal::DerivationOptions options;
         options.memoryLimit = std::size_t(16) << 30;
+        if (argc > 4 && std::string(argv[4]) == "double")
+            options.precision = graftal::Precision::Double;
         double first = 0, warm = 1e30;
         std::size_t modules = 0;
         for (int r = 0; r < repeats; ++r) {

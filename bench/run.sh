@@ -17,6 +17,8 @@
 #   BENCH_STREAM_TIMEOUT=150  seconds the streamed Koch n=11 render gets
 #   BENCH_PEER=1              0: skip lindenmayer (and its npm install)
 #   BENCH_DOC=docs/performance.md   where the table goes ("" for nowhere)
+#   BENCH_ROWS="honda23 pcond22"    run only these rows (keys as in bench/report.py);
+#                             the table then lists only them. Default: every row.
 #
 # Results (JSON per row, the table, the PNG) go to BUILD_DIR/bench/results/.
 # lindenmayer is installed with npm into bench/.peers/ (git-ignored), never committed.
@@ -36,6 +38,9 @@ STREAM_TIMEOUT=${BENCH_STREAM_TIMEOUT:-150}
 PEER=${BENCH_PEER:-1}
 DOC=${BENCH_DOC-$root/docs/performance.md}
 PEER_VERSION=1.5.4
+ONLY=${BENCH_ROWS:-}
+# Whether row KEY is to be run (every row unless BENCH_ROWS lists some).
+wanted() { [ -z "$ONLY" ] || [[ " $ONLY " == *" $1 "* ]]; }
 
 graftal="$build/graftal"
 results="$build/bench/results"
@@ -69,6 +74,10 @@ if "$graftal" render --help 2>/dev/null | grep -q -- '--stream'; then have_strea
 # ---- the peer ----------------------------------------------------------------------------
 peer_ok=0
 peer_reason=""
+if [ -n "$ONLY" ] && ! wanted koch8 && ! wanted abop16 && ! wanted hogeweg70 &&
+    ! wanted honda23 && ! wanted interp8; then
+    PEER=0  # none of the selected rows has a peer
+fi
 if [ "$PEER" = 1 ]; then
     if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
         peer_reason="not available (node/npm not installed)"
@@ -109,45 +118,65 @@ json.dump({
 EOF
 
 # ---- 6. the bandwidth floor --------------------------------------------------------------
-say "bench: memcpy probe"
-g++ -O2 -std=c++17 -o "$build/bench/memcpy_probe" "$here/memcpy_probe.cpp" ||
-    die "cannot build bench/memcpy_probe.cpp"
-# Koch island n = 8: 124,630,747 modules, 1 byte each.
-measure memcpy 1 0 120 "$build/bench/memcpy_probe" 124630747 7
+if wanted memcpy; then
+    say "bench: memcpy probe"
+    g++ -O2 -std=c++17 -o "$build/bench/memcpy_probe" "$here/memcpy_probe.cpp" ||
+        die "cannot build bench/memcpy_probe.cpp"
+    # Koch island n = 8: 124,630,747 modules, 1 byte each.
+    measure memcpy 1 0 120 "$build/bench/memcpy_probe" 124630747 7
+fi
 
 # ---- graftal -----------------------------------------------------------------------------
-# row key | file | n
+# row key | file | n | extra stats options (the in-process timing takes the same precision)
 rows=(
-    "koch8|koch-island.l|8"
-    "abop16|abop-1.24d.l|16"
-    "hogeweg70|hogeweg-1.31a.l|70"
-    "honda23|honda-2.6a.l|23"
+    "koch8|koch-island.l|8|"
+    "abop16|abop-1.24d.l|16|"
+    "hogeweg70|hogeweg-1.31a.l|70|"
+    "honda23|honda-2.6a.l|23|"
+    "honda23d|honda-2.6a.l|23|--precision double"
+    "pcond22|param-conditions.l|22|"
+    "pctx20|param-context.l|20|"
+    "pblocks20|param-blocks.l|20|"
 )
+selected=()
 for r in "${rows[@]}"; do
-    IFS='|' read -r key file n <<<"$r"
-    say "bench: graftal $file n=$n"
+    IFS='|' read -r key file n extra <<<"$r"
+    wanted "$key" && selected+=("$r")
+done
+for r in "${selected[@]}"; do
+    IFS='|' read -r key file n extra <<<"$r"
+    say "bench: graftal $file n=$n $extra"
+    # shellcheck disable=SC2086  # extra is one option and its value, or nothing
     measure "$key.graftal" "$RUNS" "$BUDGET" 600 \
-        "$graftal" stats "$ls_dir/$file" -n "$n" --no-geometry "${quiet[@]}"
+        "$graftal" stats "$ls_dir/$file" -n "$n" --no-geometry "${quiet[@]}" $extra
 done
 # The derivation alone, timed inside one process (first run, then warm runs).
-if cmake --build "$build" --target graftal_derive_timing >"$results/derive_timing.log" 2>&1; then
-    for r in "${rows[@]}"; do
-        IFS='|' read -r key file n <<<"$r"
-        say "bench: graftal $file n=$n in process"
-        measure "$key.inproc" 1 0 600 "$build/graftal_derive_timing" "$ls_dir/$file" "$n" 5
+if [ ${#selected[@]} = 0 ]; then
+    :
+elif cmake --build "$build" --target graftal_derive_timing >"$results/derive_timing.log" 2>&1; then
+    for r in "${selected[@]}"; do
+        IFS='|' read -r key file n extra <<<"$r"
+        precision=single
+        [ "$extra" = "--precision double" ] && precision=double
+        say "bench: graftal $file n=$n in process ($precision)"
+        measure "$key.inproc" 1 0 600 "$build/graftal_derive_timing" "$ls_dir/$file" "$n" 5 \
+            "$precision"
     done
 else
     say "bench: cannot build graftal_derive_timing (see $results/derive_timing.log)"
 fi
-say "bench: graftal koch-island.l n=8 with the 2D turtle"
-measure interp8.graftal "$RUNS" "$BUDGET" 600 \
-    "$graftal" stats "$ls_dir/koch-island.l" -n 8 "${quiet[@]}"
+if wanted interp8; then
+    say "bench: graftal koch-island.l n=8 with the 2D turtle"
+    measure interp8.graftal "$RUNS" "$BUDGET" 600 \
+        "$graftal" stats "$ls_dir/koch-island.l" -n 8 "${quiet[@]}"
+fi
 
 # ---- lindenmayer -------------------------------------------------------------------------
 peer_rows=("koch8|koch|8" "abop16|abop124d|16" "hogeweg70|hogeweg|70" "honda23|honda|23"
            "interp8|koch|8|--interpret")
 for r in "${peer_rows[@]}"; do
     IFS='|' read -r key system n flag <<<"$r"
+    wanted "$key" || continue
     if [ $peer_ok != 1 ]; then
         echo "$peer_reason" >"$results/$key.peer.unavailable"
         continue
@@ -159,8 +188,15 @@ done
 # Koch n=11 has 6.4e10 modules: past the 2^29 - 24 characters a V8 string can hold.
 echo "n/a (JS strings stop at 2^29 − 24 symbols)" >"$results/stream11.peer.unavailable"
 
+# The parametric rows beyond Honda's are not written for the peer.
+for key in honda23d pcond22 pctx20 pblocks20; do
+    echo "not written for the peer" >"$results/$key.peer.unavailable"
+done
+
 # ---- 7. streamed Koch n=11 to PNG --------------------------------------------------------
-if [ $have_stream = 1 ]; then
+if ! wanted stream11; then
+    :
+elif [ $have_stream = 1 ]; then
     say "bench: graftal render koch-island.l -n 11 --stream (up to ${STREAM_TIMEOUT} s)"
     png="$results/koch-n11.png"
     measure stream11.graftal 1 0 "$STREAM_TIMEOUT" \
@@ -186,4 +222,4 @@ say ""
 say "bench: done in $(( $(date +%s) - start )) s; results in $results"
 echo
 python3 "$here/report.py" report --results "$results" --json "$results/summary.json" \
-    ${DOC:+--doc "$DOC"}
+    ${ONLY:+--only "$ONLY"} ${DOC:+--doc "$DOC"}

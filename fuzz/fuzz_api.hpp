@@ -115,7 +115,7 @@ class ComparingSink : public graftal::ModuleSink {
     explicit ComparingSink(const graftal::ModuleString& expected) : expected_(expected) {}
     void module(graftal::Symbol symbol, std::span<const double> params) override {
         if (next_ >= expected_.size()) finding("streamed derivation has more modules");
-        std::span<const double> want = expected_.params(next_);
+        graftal::ParamView want = expected_.params(next_);
         bool same = expected_.symbol(next_) == symbol && want.size() == params.size();
         for (std::size_t i = 0; same && i < params.size(); ++i)
             same = sameNumber(want[i], params[i]);

@@ -217,7 +217,9 @@ TEST(Derivation, SimpleArgumentsGiveTheSameDoublesAsTheirPrograms) {
     LSystem ls = parse(
         "Lsystem: 1\naxiom: A(0.7,-2)\nA(x,y) --> B(x+1.5, 2-x, x*0.1, x/3, 3/x, y, 7, "
         "1.5+x, 2*x, x-0.1, 0.1-y)\nendlsystem\n");
-    ModuleString s = derive(ls, 1);
+    DerivationOptions doubles;  // the doubles as computed, not rounded to floats
+    doubles.precision = Precision::Double;
+    ModuleString s = derive(ls, 1, doubles);
     const double x = 0.7, y = -2;
     const double expected[] = {x + 1.5, 2 - x,   x * 0.1, x / 3,   3 / x,  y,
                                7,       1.5 + x, 2 * x,   x - 0.1, 0.1 - y};

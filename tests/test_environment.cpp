@@ -154,8 +154,7 @@ TEST(LectureOpenLSystem, DerivesThePrintedStringsExactly) {
     EXPECT_EQ(derived(ls.lsystem, 1), "F(0,0)F(0,1)A?E(1)");
     EXPECT_EQ(derived(ls.lsystem, 2), "F(0,0)F(0,1)F(0,2)A?E(2)");
     EXPECT_EQ(derived(ls.lsystem, 3), "F(0,0)F(0,1)F(0,2)?E(3)");
-    EXPECT_EQ(derived(ls.lsystem, 4), "F(0,0)F(0,1)F(0,2)?E(4)")
-        << "the plant stops; time goes on";
+    EXPECT_EQ(derived(ls.lsystem, 4), "F(0,0)F(0,1)F(0,2)?E(4)") << "the plant stops; time goes on";
     // The picture is the derivation: the string draws nothing (the homomorphism erases F),
     // and the diagram's rows are the four printed strings, ?E's answer under ?E.
     Scene scene = interpret(ls, applyHomomorphism(ls.lsystem, deriveWithQueries(ls)));
@@ -272,8 +271,9 @@ TEST(OccupancyEnvironment, CountsTheOthersInTheSameCell) {
     Model ls = parseModel(withEnvironment(
         "environment: occupancy cell 1\n",
         "axiom: ?E(9,9) f(0.5) ?E(9,9) f(0.4) ?E(9) f(2) ?E(9,9) [-(90) f(0.5) ?E(9,9)]\n"));
+    // 1/3 as the string stores it: a 32-bit float (0.3333333333333333 with doubles).
     EXPECT_EQ(derived(ls.lsystem, 0),
-              "?E(2,0.3333333333333333)f(0.5)?E(2,0.3333333333333333)f(0.4)?E(2)f(2)?E(1,0.5)"
+              "?E(2,0.33333334)f(0.5)?E(2,0.33333334)f(0.4)?E(2)f(2)?E(1,0.5)"
               "[-(90)f(0.5)?E(1,0.5)]");
 }
 
@@ -289,8 +289,7 @@ TEST(OccupancyEnvironment, LightIsTheSameFieldAnsweredAsLightFirst) {
     Model ls = parseModel(withEnvironment(
         "environment: light\n", "axiom: ?E(9,9) f(0.2) ?E(9,9) f(0.2) ?E(9,9) f(5) ?E(9,9)\n"));
     EXPECT_EQ(derived(ls.lsystem, 0),
-              "?E(0.3333333333333333,2)f(0.2)?E(0.3333333333333333,2)"
-              "f(0.2)?E(0.3333333333333333,2)f(5)?E(1,0)")
+              "?E(0.33333334,2)f(0.2)?E(0.33333334,2)f(0.2)?E(0.33333334,2)f(5)?E(1,0)")
         << "default: cells of side 1";
 }
 

@@ -12,6 +12,14 @@ using graftal::testing::parseModel;
 
 namespace {
 
+// The turtle's frames are checked to 1e-12 from the query modules' answers: parameters
+// stored as doubles, not rounded to floats (the default).
+DerivationOptions doubles() {
+    DerivationOptions o;
+    o.precision = Precision::Double;
+    return o;
+}
+
 struct Frame {
     Vec3 h, l, u;
 };
@@ -20,7 +28,7 @@ struct Frame {
 Frame frameAfter(const std::string& modules, double angle = 90) {
     Model ls = parseModel("Lsystem: 1\nangle increment: " + std::to_string(angle) +
                           "\naxiom: " + modules + "?H(0,0,0)?L(0,0,0)?U(0,0,0)\nendlsystem\n");
-    ModuleString s = deriveWithQueries(ls, 0);
+    ModuleString s = deriveWithQueries(ls, 0, doubles());
     auto v = [&](std::size_t i) {
         auto p = s.params(i);
         return Vec3{p[0], p[1], p[2]};
@@ -96,7 +104,7 @@ TEST(Turtle3D, FrameStaysOrthonormalAfterAMillionRotations) {
     for (int i = 0; i < 350000; ++i) axiom += "+&/";  // 1.05 million rotations
     Model big = parseModel("Lsystem: 1\nangle increment: 13.7\naxiom: " + axiom +
                            "?H(0,0,0)?L(0,0,0)?U(0,0,0)\nendlsystem\n");
-    ModuleString s = deriveWithQueries(big, 0);
+    ModuleString s = deriveWithQueries(big, 0, doubles());
     std::size_t n = s.size();
     auto v = [&](std::size_t i) {
         auto p = s.params(i);
@@ -116,7 +124,7 @@ TEST(Turtle3D, TropismBendsTowardTheVectorByElasticityTimesSine) {
     Model ls = parseModel(
         "Lsystem: 1\ntropism direction: 1,0,0\ntropism elasticity: 0.2\n"
         "axiom: F?H(0,0,0)\nendlsystem\n");
-    ModuleString s = deriveWithQueries(ls, 0);
+    ModuleString s = deriveWithQueries(ls, 0, doubles());
     auto h = s.params(1);
     EXPECT_NEAR(h[0], std::sin(0.2), 1e-12);
     EXPECT_NEAR(h[1], std::cos(0.2), 1e-12);
@@ -126,14 +134,14 @@ TEST(Turtle3D, NegativeElasticityBendsAway) {
     Model ls = parseModel(
         "Lsystem: 1\ntropism direction: 1,0,0\ntropism elasticity: -0.2\n"
         "axiom: F?H(0,0,0)\nendlsystem\n");
-    EXPECT_NEAR(deriveWithQueries(ls, 0).params(1)[0], -std::sin(0.2), 1e-12);
+    EXPECT_NEAR(deriveWithQueries(ls, 0, doubles()).params(1)[0], -std::sin(0.2), 1e-12);
 }
 
 TEST(Turtle3D, TropismVanishesAlongTheVector) {
     Model ls = parseModel(
         "Lsystem: 1\ntropism direction: 0,1,0\ntropism elasticity: 0.5\n"
         "axiom: FFF?H(0,0,0)\nendlsystem\n");
-    ModuleString s = deriveWithQueries(ls, 0);
+    ModuleString s = deriveWithQueries(ls, 0, doubles());
     auto h = s.params(3);
     EXPECT_NEAR(h[0], 0, 1e-15);
     EXPECT_NEAR(h[1], 1, 1e-15);
@@ -187,7 +195,8 @@ TEST(Turtle3D, FlatStringsStayTwoDimensional) {
     Model ls = parseModel("Lsystem: 1\naxiom: F+F[-F]\nendlsystem\n");
     EXPECT_FALSE(interpret(ls, deriveWithQueries(ls, 0)).is3D);
     Model rolled = parseModel("Lsystem: 1\naxiom: F/(180)F[+F]/(180)F[+F]\nendlsystem\n");
-    EXPECT_FALSE(interpret(rolled, deriveWithQueries(rolled, 0)).is3D) << "a half roll keeps a plant flat";
+    EXPECT_FALSE(interpret(rolled, deriveWithQueries(rolled, 0)).is3D)
+        << "a half roll keeps a plant flat";
     Model pitched = parseModel("Lsystem: 1\naxiom: F&F\nendlsystem\n");
     EXPECT_TRUE(interpret(pitched, deriveWithQueries(pitched, 0)).is3D);
 }

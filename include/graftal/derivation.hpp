@@ -46,6 +46,9 @@ struct DerivationOptions {
     CancellationToken cancel;
     // Where printf writes (cpfg writes to standard error). Empty: the text is dropped.
     std::function<void(std::string_view)> print;
+    // How the derived strings store parameters: 32-bit floats, as cpfg (half the memory),
+    // or doubles. Expressions are evaluated in double either way.
+    Precision precision = Precision::Single;
 };
 
 class Derivation {
@@ -74,6 +77,13 @@ class Derivation {
     int stepsDone() const { return steps_; }
     const ModuleString& current() const { return *current_; }
     ModuleString take() { return std::move(*current_); }
+
+    // The number of modules of each symbol (indexed by symbol id) that one more step would
+    // make, counted without writing that string: what `stats` needs of the last step, for
+    // half the memory. Empty when the step cannot be counted without being done (blocks or
+    // printf in productions, decomposition, query modules, environment); the derivation is
+    // left as it was either way. Throws what step() would throw.
+    std::vector<std::uint64_t> countNextStep();
 
   private:
     void afterStep(int stepNumber);

@@ -81,11 +81,76 @@ class SymbolTable {
     std::vector<Symbol> byLength_;
 };
 
+// How a string keeps its parameters. Single (the default of a derivation) stores each one
+// as a 32-bit float, as cpfg does: half the memory of Double, so twice the modules fit.
+// Expressions are still evaluated in double; only the value stored is rounded. Double
+// keeps every parameter as computed (`--precision double`). docs/performance.md says
+// where the two differ.
+enum class Precision : std::uint8_t { Single, Double };
+
+// The parameters of one module, read as doubles whatever the string stores.
+class ParamView {
+  public:
+    ParamView() = default;
+    ParamView(const double* d, std::size_t n) : d_(d), n_(static_cast<std::uint32_t>(n)) {}
+    ParamView(const float* f, std::size_t n) : f_(f), n_(static_cast<std::uint32_t>(n)) {}
+    ParamView(std::span<const double> d) : ParamView(d.data(), d.size()) {}
+
+    std::size_t size() const { return n_; }
+    bool empty() const { return n_ == 0; }
+    double operator[](std::size_t k) const { return f_ ? static_cast<double>(f_[k]) : d_[k]; }
+    // Stored as 32-bit floats (then printed in the shortest form that reads back as the
+    // same float).
+    bool single() const { return f_ != nullptr; }
+
+    class iterator {
+      public:
+        using value_type = double;
+        using difference_type = std::ptrdiff_t;
+        iterator() = default;
+        iterator(const ParamView* v, std::size_t k) : v_(v), k_(k) {}
+        double operator*() const { return (*v_)[k_]; }
+        iterator& operator++() {
+            ++k_;
+            return *this;
+        }
+        iterator operator++(int) {
+            iterator t = *this;
+            ++k_;
+            return t;
+        }
+        bool operator==(const iterator& o) const { return k_ == o.k_; }
+
+      private:
+        const ParamView* v_ = nullptr;
+        std::size_t k_ = 0;
+    };
+    iterator begin() const { return {this, 0}; }
+    iterator end() const { return {this, n_}; }
+
+    // The values as doubles: the storage itself when it holds doubles, else a copy in
+    // `scratch`.
+    std::span<const double> doubles(std::vector<double>& scratch) const {
+        if (!f_) return {d_, n_};
+        scratch.assign(f_, f_ + n_);
+        return scratch;
+    }
+
+  private:
+    const double* d_ = nullptr;
+    const float* f_ = nullptr;
+    std::uint32_t n_ = 0;
+};
+
 class ModuleString {
   public:
     using SymbolBuffer = std::vector<Symbol, UninitializedAllocator<Symbol>>;
     using OffsetBuffer = std::vector<std::uint32_t, UninitializedAllocator<std::uint32_t>>;
     using ParamBuffer = std::vector<double, UninitializedAllocator<double>>;
+    using FloatBuffer = std::vector<float, UninitializedAllocator<float>>;
+
+    ModuleString() = default;
+    explicit ModuleString(Precision p) : precision_(p) {}
 
     std::size_t size() const { return symbols_.size(); }
     bool empty() const { return symbols_.empty(); }
@@ -94,23 +159,47 @@ class ModuleString {
     Symbol symbol(std::size_t i) const { return symbols_[i]; }
     std::span<const Symbol> symbols() const { return symbols_; }
 
-    std::span<const double> params(std::size_t i) const {
+    ParamView params(std::size_t i) const {
         if (paramStart_.empty()) return {};
-        return {params_.data() + paramStart_[i], paramStart_[i + 1] - paramStart_[i]};
+        std::size_t b = paramStart_[i], n = paramStart_[i + 1] - b;
+        if (precision_ == Precision::Single) return {floats_.data() + b, n};
+        return {params_.data() + b, n};
     }
-    std::size_t paramCount() const { return params_.size(); }
+    std::size_t paramCount() const {
+        return precision_ == Precision::Single ? floats_.size() : params_.size();
+    }
+
+    // How parameters are stored. A string made by default stores doubles; a derivation
+    // stores what DerivationOptions::precision says. Changing it converts what is held.
+    Precision precision() const { return precision_; }
+    void setPrecision(Precision p);
+    // Bytes one stored parameter takes.
+    std::size_t paramBytes() const { return precision_ == Precision::Single ? 4 : 8; }
+    // Sets parameter `index` of the flat parameter array (rounded when stored as floats).
+    void setParam(std::size_t index, double v) {
+        if (precision_ == Precision::Single)
+            floats_[index] = static_cast<float>(v);
+        else
+            params_[index] = v;
+    }
 
     void clear();
     void reserve(std::size_t modules, std::size_t params = 0);
     void push(Symbol s);
-    void push(Symbol s, std::span<const double> args);
+    void push(Symbol s, ParamView args);
+    void push(Symbol s, std::span<const double> args) { push(s, ParamView(args)); }
+    void push(Symbol s, const std::vector<double>& args) { push(s, ParamView(args)); }
     void append(const ModuleString& other);
 
     // Raw access for the derivation engine, which sizes the buffers once and fills them.
+    // rawParams() holds the parameters of a Double string, rawFloats() those of a Single one.
     SymbolBuffer& rawSymbols() { return symbols_; }
     OffsetBuffer& rawParamStart() { return paramStart_; }
     ParamBuffer& rawParams() { return params_; }
+    FloatBuffer& rawFloats() { return floats_; }
     const OffsetBuffer& paramStarts() const { return paramStart_; }
+    const ParamBuffer& doubleParams() const { return params_; }
+    const FloatBuffer& floatParams() const { return floats_; }
 
     // Bytes held by the buffers (capacity, not size): what the memory limit counts.
     std::size_t memoryBytes() const;
@@ -119,12 +208,14 @@ class ModuleString {
     std::string toString(const SymbolTable& table) const;
     void print(std::ostream& os, const SymbolTable& table) const;
 
-    friend bool operator==(const ModuleString&, const ModuleString&) = default;
+    friend bool operator==(const ModuleString& a, const ModuleString& b);
 
   private:
     SymbolBuffer symbols_;
-    OffsetBuffer paramStart_;  // size()+1 offsets into params_, or empty
-    ParamBuffer params_;
+    OffsetBuffer paramStart_;  // size()+1 offsets into the parameters, or empty
+    ParamBuffer params_;       // Precision::Double
+    FloatBuffer floats_;       // Precision::Single
+    Precision precision_ = Precision::Double;
 };
 
 // How many modules of each symbol `s` has, indexed by symbol id (`symbolCount` entries),
@@ -134,11 +225,14 @@ std::vector<std::uint64_t> countSymbols(const ModuleString& s, std::size_t symbo
 
 // Shortest decimal text that reads back as the same double; integers without a point.
 std::string formatNumber(double v);
+// The same for a 32-bit float: the shortest text that reads back as the same float.
+std::string formatSingle(float v);
+// Parameter k of a module as a string prints it (formatSingle for stored floats).
+std::string formatParameter(ParamView params, std::size_t k);
 
 // Appends one module as a string prints it: its name, then "(a,b,...)" when it has
 // parameters.
-void appendModuleText(std::string& out, const SymbolTable& table, Symbol symbol,
-                      std::span<const double> params);
+void appendModuleText(std::string& out, const SymbolTable& table, Symbol symbol, ParamView params);
 // "190.7 MiB": binary units, as --memory-limit reads them (2G is 2 GiB).
 std::string formatBytes(double bytes);
 

@@ -46,6 +46,8 @@ struct DeriveRequest {
     // Where a model's printf writes (cpfg writes to standard error). Empty: dropped.
     std::function<void(std::string_view)> print;
     CancellationToken cancel;
+    // How parameters are stored (DerivationOptions::precision).
+    Precision precision = Precision::Single;
 };
 
 struct RenderRequest : DeriveRequest {

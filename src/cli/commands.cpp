@@ -145,6 +145,7 @@ DeriveRequest deriveRequest(const InputOptions& in) {
     r.memoryLimit = in.memoryLimit;
     r.stream = in.stream ? StreamPolicy::Always : StreamPolicy::Auto;
     r.streamLimit = in.streamLimit;
+    r.precision = in.precision;
     // printf in a model writes to standard error, as cpfg's does (standard output may
     // carry the derived string).
     r.print = [](std::string_view text) {
@@ -325,6 +326,25 @@ int runStats(const InputOptions& in, bool geometry, bool predict) {
             j["polygons"] = m.polygons;
             j["bbox"] = bboxJson(m.bounds);
         }
+        std::cout << j.dump(2) << '\n';
+        return 0;
+    }
+    if (!geometry && l.steps > 0) {
+        // Symbol counts alone: the last step is counted without being written, which
+        // halves the memory (and the fresh pages) the derivation needs.
+        Derivation d(l.model, derivationOptions(in, l.model));
+        d.run(l.steps - 1);
+        std::vector<std::uint64_t> counts = d.countNextStep();
+        if (counts.empty()) {
+            d.step();
+            d.finish();
+            counts = countSymbols(d.current(), l.model.lsystem.symbols.size(), in.threads);
+        }
+        endProgressLine();
+        std::uint64_t total = 0;
+        for (std::uint64_t c : counts) total += c;
+        j["modules"] = total;
+        j["symbols"] = symbolsJson(l.model.lsystem.symbols, counts);
         std::cout << j.dump(2) << '\n';
         return 0;
     }

@@ -27,6 +27,7 @@ struct InputOptions {
     bool stream = false;  // --stream: expand depth-first, never hold the string
     bool quiet = false;   // --quiet: no notes or warnings on stderr
     std::uint64_t streamLimit = 100'000'000'000ull;  // --stream-limit: most modules expanded
+    Precision precision = Precision::Single;         // --precision single|double
 };
 
 struct RenderCommandOptions {

@@ -29,11 +29,31 @@ class ChunkedOutput {
     std::string buffer_;
 };
 
-// The modules as the L-system file writes them: F(1,2.5)+A
-class TextSink : public ModuleSink {
+// A streamed derivation hands over doubles; with single precision they came from floats
+// and print as the held string's floats would.
+class PrecisionSink : public ModuleSink {
   public:
-    explicit TextSink(const SymbolTable& t) : table_(t) {}
+    explicit PrecisionSink(Precision precision) : precision_(precision) {}
     void module(Symbol s, std::span<const double> params) override {
+        if (precision_ == Precision::Single) {
+            singles_.assign(params.begin(), params.end());
+            held(s, ParamView(singles_.data(), singles_.size()));
+        } else {
+            held(s, ParamView(params));
+        }
+    }
+    virtual void held(Symbol s, ParamView params) = 0;
+
+  private:
+    Precision precision_;
+    std::vector<float> singles_;
+};
+
+// The modules as the L-system file writes them: F(1,2.5)+A
+class TextSink : public PrecisionSink {
+  public:
+    TextSink(const SymbolTable& t, Precision precision) : PrecisionSink(precision), table_(t) {}
+    void held(Symbol s, ParamView params) override {
         appendModuleText(out_.buffer(), table_, s, params);
         out_.maybeFlush();
     }
@@ -49,14 +69,15 @@ class TextSink : public ModuleSink {
 
 // {"file": ..., "steps": n, "modules": [{"symbol": "F", "params": [1, 2.5]}, ...]}, one
 // module to a line so that line tools work on it too.
-class JsonSink : public ModuleSink {
+class JsonSink : public PrecisionSink {
   public:
-    JsonSink(const SymbolTable& t, const std::string& file, int steps) : table_(t) {
+    JsonSink(const SymbolTable& t, const std::string& file, int steps, Precision precision)
+        : PrecisionSink(precision), table_(t) {
         names_.resize(t.size());
         out_.buffer() += "{\n  \"file\": " + nlohmann::json(file).dump() +
                          ",\n  \"steps\": " + std::to_string(steps) + ",\n  \"modules\": [";
     }
-    void module(Symbol s, std::span<const double> params) override {
+    void held(Symbol s, ParamView params) override {
         std::string& b = out_.buffer();
         if (names_[s].empty()) names_[s] = nlohmann::json(table_.name(s)).dump();
         b += first_ ? "\n    {\"symbol\": " : ",\n    {\"symbol\": ";
@@ -66,7 +87,7 @@ class JsonSink : public ModuleSink {
         for (std::size_t k = 0; k < params.size(); ++k) {
             if (k) b += ", ";
             // JSON has no NaN or infinity: a module's parameter that became one is null.
-            b += std::isfinite(params[k]) ? formatNumber(params[k]) : "null";
+            b += std::isfinite(params[k]) ? formatParameter(params, k) : "null";
         }
         b += "]}";
         out_.maybeFlush();
@@ -95,7 +116,7 @@ int writeDerivation(Loaded l, const InputOptions& in, bool homomorphism, Sink& s
             d.modules =
                 applyHomomorphism(d.model.lsystem, d.modules, derivationOptions(in, d.model));
         for (std::size_t i = 0; i < d.modules.size(); ++i)
-            sink.module(d.modules.symbol(i), d.modules.params(i));
+            sink.held(d.modules.symbol(i), d.modules.params(i));
     }
     sink.finish();
     return std::cout ? 0 : 1;
@@ -108,10 +129,10 @@ int runDerive(const InputOptions& in, bool homomorphism, DeriveFormat format) {
     // The sinks refer to the symbol table: keep it alive after the model moves on.
     const SymbolTable symbols = l.model.lsystem.symbols;
     if (format == DeriveFormat::Json) {
-        JsonSink sink(symbols, fileName(in), l.steps);
+        JsonSink sink(symbols, fileName(in), l.steps, in.precision);
         return writeDerivation(std::move(l), in, homomorphism, sink);
     }
-    TextSink sink(symbols);
+    TextSink sink(symbols, in.precision);
     return writeDerivation(std::move(l), in, homomorphism, sink);
 }
 

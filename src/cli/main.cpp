@@ -46,6 +46,12 @@ void addInputOptions(CLI::App& cmd, graftal::cli::InputOptions& in, std::string&
     cmd.add_option("--stream-limit", in.streamLimit,
                    "most modules a streamed run expands one by one (1e11); a picture drawn "
                    "from subtree summaries expands a few per pixel");
+    cmd.add_option("--precision", in.precision,
+                   "how parameters are stored: single (32-bit floats, as cpfg; default) or double")
+        ->transform(CLI::CheckedTransformer(
+            std::map<std::string, graftal::Precision>{{"single", graftal::Precision::Single},
+                                                      {"double", graftal::Precision::Double}},
+            CLI::ignore_case));
 }
 
 // What an option's value must be, in the words of its message.

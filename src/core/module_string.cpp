@@ -84,30 +84,65 @@ void ModuleString::clear() {
     symbols_.clear();
     paramStart_.clear();
     params_.clear();
+    floats_.clear();
 }
 
 void ModuleString::reserve(std::size_t modules, std::size_t params) {
     symbols_.reserve(modules);
     if (params) {
         paramStart_.reserve(modules + 1);
-        params_.reserve(params);
+        if (precision_ == Precision::Single)
+            floats_.reserve(params);
+        else
+            params_.reserve(params);
     }
+}
+
+void ModuleString::setPrecision(Precision p) {
+    if (p == precision_) return;
+    if (p == Precision::Single) {
+        floats_.assign(params_.begin(), params_.end());
+        ParamBuffer().swap(params_);
+    } else {
+        params_.assign(floats_.begin(), floats_.end());
+        FloatBuffer().swap(floats_);
+    }
+    precision_ = p;
+}
+
+bool operator==(const ModuleString& a, const ModuleString& b) {
+    if (a.symbols_ != b.symbols_ || a.paramStart_ != b.paramStart_) return false;
+    if (a.precision_ == b.precision_)
+        return a.precision_ == Precision::Single ? a.floats_ == b.floats_ : a.params_ == b.params_;
+    const std::size_t n = a.paramCount();
+    if (n != b.paramCount()) return false;
+    for (std::size_t k = 0; k < n; ++k) {
+        double x = a.precision_ == Precision::Single ? a.floats_[k] : a.params_[k];
+        double y = b.precision_ == Precision::Single ? b.floats_[k] : b.params_[k];
+        if (x != y) return false;
+    }
+    return true;
 }
 
 void ModuleString::push(Symbol s) {
     symbols_.push_back(s);
-    if (!paramStart_.empty()) paramStart_.push_back(static_cast<std::uint32_t>(params_.size()));
+    if (!paramStart_.empty()) paramStart_.push_back(static_cast<std::uint32_t>(paramCount()));
 }
 
-void ModuleString::push(Symbol s, std::span<const double> args) {
+void ModuleString::push(Symbol s, ParamView args) {
     if (args.empty()) {
         push(s);
         return;
     }
     if (paramStart_.empty()) paramStart_.assign(symbols_.size() + 1, 0);
     symbols_.push_back(s);
-    params_.insert(params_.end(), args.begin(), args.end());
-    paramStart_.push_back(static_cast<std::uint32_t>(params_.size()));
+    for (std::size_t k = 0; k < args.size(); ++k) {
+        if (precision_ == Precision::Single)
+            floats_.push_back(static_cast<float>(args[k]));
+        else
+            params_.push_back(args[k]);
+    }
+    paramStart_.push_back(static_cast<std::uint32_t>(paramCount()));
 }
 
 void ModuleString::append(const ModuleString& other) {
@@ -116,7 +151,7 @@ void ModuleString::append(const ModuleString& other) {
 
 std::size_t ModuleString::memoryBytes() const {
     return symbols_.capacity() * sizeof(Symbol) + paramStart_.capacity() * sizeof(std::uint32_t) +
-           params_.capacity() * sizeof(double);
+           params_.capacity() * sizeof(double) + floats_.capacity() * sizeof(float);
 }
 
 std::string formatBytes(double b) {
@@ -142,6 +177,23 @@ std::string formatNumber(double v) {
     }
     auto r = std::to_chars(buf, buf + sizeof buf, v);
     return std::string(buf, r.ptr);
+}
+
+std::string formatSingle(float v) {
+    if (v == 0) return "0";
+    if (std::isnan(v)) return "nan";
+    if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+    char buf[64];
+    if (std::fabs(v) < 1e15f && v == std::trunc(v)) {
+        auto r = std::to_chars(buf, buf + sizeof buf, static_cast<long long>(v));
+        return std::string(buf, r.ptr);
+    }
+    auto r = std::to_chars(buf, buf + sizeof buf, v);
+    return std::string(buf, r.ptr);
+}
+
+std::string formatParameter(ParamView params, std::size_t k) {
+    return params.single() ? formatSingle(static_cast<float>(params[k])) : formatNumber(params[k]);
 }
 
 void ModuleString::print(std::ostream& os, const SymbolTable& table) const {
@@ -188,14 +240,13 @@ std::vector<std::uint64_t> countSymbols(const ModuleString& s, std::size_t symbo
     return counts;
 }
 
-void appendModuleText(std::string& out, const SymbolTable& table, Symbol symbol,
-                      std::span<const double> params) {
+void appendModuleText(std::string& out, const SymbolTable& table, Symbol symbol, ParamView params) {
     out += table.name(symbol);
     if (params.empty()) return;
     out += '(';
     for (std::size_t k = 0; k < params.size(); ++k) {
         if (k) out += ',';
-        out += formatNumber(params[k]);
+        out += formatParameter(params, k);
     }
     out += ')';
 }

@@ -47,9 +47,10 @@ Rgb fromHex(std::uint32_t c) {
 
 std::string parameterText(const ModuleString& s, std::size_t i) {
     std::string text;
-    for (double v : s.params(i)) {
+    ParamView params = s.params(i);
+    for (std::size_t k = 0; k < params.size(); ++k) {
         if (!text.empty()) text += ',';
-        text += formatNumber(v);
+        text += formatParameter(params, k);
     }
     return text.size() <= kMaxParameterChars ? text : std::string();
 }

@@ -31,6 +31,7 @@ DerivationOptions derivationOptions(const Model& model, const DeriveRequest& req
     opts.progress = request.progress;
     opts.cancel = request.cancel;
     opts.print = request.print;
+    opts.precision = request.precision;
     return opts;
 }
 
@@ -80,7 +81,8 @@ bool shouldStream(const Model& model, int steps, const DeriveRequest& request, b
     GrowthPrediction g = predictGrowth(ls, steps);
     if (g.expectedModules.size() < 2) return false;
     // The last step holds the previous string and the new one; parameters take more.
-    double perModule = ls.isParametric() ? 1 + 4 + 8 * 2 : 1;
+    const double paramBytes = request.precision == Precision::Single ? 4 : 8;
+    double perModule = ls.isParametric() ? 1 + 4 + paramBytes * 2 : 1;
     double last = g.expectedModules.back(),
            previous = g.expectedModules[g.expectedModules.size() - 2];
     double stringBytes = (last + previous) * perModule;

@@ -52,7 +52,8 @@ Derivation::Derivation(LSystem lsystem, DerivationOptions options)
     : lsystem_(std::move(lsystem)),
       options_(options),
       current_(std::make_unique<ModuleString>(lsystem_.axiom)),
-      next_(std::make_unique<ModuleString>()) {
+      next_(std::make_unique<ModuleString>(options.precision)) {
+    current_->setPrecision(options.precision);
     std::uint64_t seed = options.seed.value_or(lsystem_.seed);
     unsigned threads = options.threads ? options.threads : defaultThreadCount();
     rules_ = std::make_unique<RewritingEngine>(lsystem_, lsystem_.productions, seed, threads);
@@ -69,7 +70,6 @@ Derivation::Derivation(LSystem lsystem, DerivationOptions options)
     if (!lsystem_.startBlock.empty()) rules_->runBlock(lsystem_.startBlock, nullptr, 0, 0);
     if (!lsystem_.axiomArguments.empty()) {
         // Axiom parameters that read variables see what Start: left in them.
-        auto& params = current_->rawParams();
         const auto& starts = current_->paramStarts();
         for (const auto& a : lsystem_.axiomArguments) {
             EvalContext ctx;
@@ -77,7 +77,7 @@ Derivation::Derivation(LSystem lsystem, DerivationOptions options)
             ctx.print = &options_.print;
             ctx.files = files_.get();
             ctx.functions = &lsystem_.functions;
-            params[starts[a.module] + a.param] = a.value.evaluate({}, &ctx);
+            current_->setParam(starts[a.module] + a.param, a.value.evaluate({}, &ctx));
         }
     }
     if (rules_->parametric() && !current_->hasParameters()) {
@@ -99,7 +99,7 @@ Derivation::~Derivation() = default;
 // branch it stands in (or the end of the string on the main axis).
 static bool pruneCuts(const ModuleString& s, ModuleString& out) {
     if (!containsSymbol(s, '%', '%')) return false;
-    out.clear();
+    out = ModuleString(s.precision());
     out.reserve(s.size(), s.paramCount());
     if (s.hasParameters()) out.rawParamStart().assign(1, 0);
     for (std::size_t i = 0; i < s.size(); ++i) {
@@ -153,14 +153,18 @@ void Derivation::answerQueries(int stepNumber) {
                     "in step " +
                         std::to_string(stepNumber) + "; they must map to themselves");
 
-    auto& params = s.rawParams();
     const auto& starts = s.paramStarts();
     std::vector<CommunicationRequest> requests;
+    // The environment answers in doubles; strings of floats get the answers rounded after.
+    std::vector<std::vector<double>> answers(positions.size());
     for (std::size_t k = 0; k < positions.size(); ++k) {
         std::size_t i = positions[k];
         const TurtleFrame& f = frames[k];
         std::span<double> p;
-        if (!starts.empty()) p = {params.data() + starts[i], starts[i + 1] - starts[i]};
+        if (!starts.empty()) {
+            answers[k].assign(s.params(i).begin(), s.params(i).end());
+            p = answers[k];
+        }
         const Vec3* v = nullptr;
         const Vec3 cpfgUp = f.up * -1.0;  // cpfg's up vector is -U (its L = H x U)
         switch (s.symbol(i)) {
@@ -187,6 +191,9 @@ void Derivation::answerQueries(int stepNumber) {
         for (std::size_t c = 0; c < p.size() && c < 3; ++c) p[c] = xyz[c];
     }
     if (!requests.empty() && environment_) environment_->respond(stepNumber, requests);
+    for (std::size_t k = 0; k < positions.size(); ++k)
+        for (std::size_t c = 0; c < answers[k].size(); ++c)
+            s.setParam(starts[positions[k]] + c, answers[k][c]);
 }
 
 void Derivation::afterStep(int stepNumber) {
@@ -213,6 +220,28 @@ void Derivation::step() {
     if (!lsystem_.endEachBlock.empty())
         rules_->runBlock(lsystem_.endEachBlock, nullptr, stepNumber, 1);
     if (options_.progress) options_.progress(stepNumber, current_->size());
+}
+
+std::vector<std::uint64_t> Derivation::countNextStep() {
+    // What happens after the rewriting (decomposition, answers to queries, End each
+    // blocks) could change the string, and blocks run per module: those steps are done.
+    if (decomposition_ || queries_ || !lsystem_.startEachBlock.empty() ||
+        !lsystem_.endEachBlock.empty() || !lsystem_.endBlock.empty() || lsystem_.usesCut())
+        return {};
+    options_.cancel.check();
+    const int stepNumber = steps_ + 1;
+    const double q = state_[0];
+    state_[0] = stepNumber;  // conditions may read the step number
+    std::vector<std::uint64_t> counts;
+    try {
+        rules_->countStep(*current_, counts, stepNumber, lsystem_.tableForStep(stepNumber),
+                          options_.memoryLimit);
+    } catch (...) {
+        state_[0] = q;
+        throw;
+    }
+    state_[0] = q;
+    return counts;
 }
 
 void Derivation::run(int steps) {

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstring>
 #include <numeric>
+#include <type_traits>
 
 #include "core/parallel.hpp"
 #include "core/random_stream.hpp"
@@ -15,6 +16,19 @@ namespace {
 
 constexpr std::int32_t kIdentity = -1;  // no production applies: the module is copied
 constexpr std::int32_t kConsumed = -2;  // part of a multi-module predecessor already rewritten
+
+// A step remembers the production chosen for every module between its two passes, in two
+// bytes per module (production k is k + 2): on a string of 10^8 modules that is 200 MB
+// less than a 32-bit index, and fewer fresh pages to map.
+using ChoiceCode = std::uint16_t;
+constexpr ChoiceCode kIdentityCode = 1, kConsumedCode = 0;  // kIdentity + 2, kConsumed + 2
+constexpr std::size_t kMaxChoiceProductions = 0xFFFF - 2;
+inline ChoiceCode encodeChoice(std::int32_t k) {
+    return static_cast<ChoiceCode>(k + 2);
+}
+inline std::int32_t decodeChoice(ChoiceCode c) {
+    return static_cast<std::int32_t>(c) - 2;
+}
 
 // Below this many modules a step is not worth splitting across threads.
 constexpr std::size_t kParallelThreshold = 1 << 16;
@@ -28,7 +42,7 @@ bool arityMatches(const ModulePattern& p, const ModuleString& s, std::size_t j) 
 }
 
 void bind(const ModulePattern& p, const ModuleString& s, std::size_t j, double* slots, int& slot) {
-    auto args = s.params(j);
+    ParamView args = s.params(j);
     for (std::size_t k = 0; k < p.formals.size(); ++k) slots[slot++] = args[k];
 }
 
@@ -71,6 +85,10 @@ RewritingEngine::RewritingEngine(const LSystem& ls, const std::vector<Production
     parametric_ |= sequential_;
     parametric_ |= ls.isParametric();
     tableCount_ = std::max<std::size_t>(1, ls.tableNames.size());
+    if (productions_.size() > kMaxChoiceProductions)
+        throw Error(SourceLocation{ls.file, 0, 0},
+                    "too many productions: " + std::to_string(productions_.size()) + " (at most " +
+                        std::to_string(kMaxChoiceProductions) + ")");
     fast_ = !multiPred_ && !parametric_ && !needBrackets_ && !stochastic && !sequential_;
     candidates_.assign(tableCount_, std::vector<std::vector<std::uint32_t>>(ls.symbols.size()));
     for (std::uint32_t k = 0; k < productions_.size(); ++k) {
@@ -178,17 +196,21 @@ std::size_t RewritingEngine::chunkCount(std::size_t n) const {
 
 // The previous string counts with what it holds, not with its buffers' capacity, which
 // may include room kept for a later step (see sizeOutput).
-double RewritingEngine::stringBytes(std::size_t modules, std::size_t params, bool parametric) {
+double RewritingEngine::stringBytes(std::size_t modules, std::size_t params, bool parametric,
+                                    std::size_t paramBytes) {
     return static_cast<double>(modules) * sizeof(Symbol) +
-           (parametric ? static_cast<double>(modules + 1) * 4 + params * 8.0 : 0.0);
+           (parametric ? static_cast<double>(modules + 1) * 4 +
+                             static_cast<double>(params) * static_cast<double>(paramBytes)
+                       : 0.0);
 }
 
 void RewritingEngine::checkLimit(int stepNumber, std::size_t modules, std::size_t params,
                                  std::size_t extra, const ModuleString& cur,
                                  std::size_t limit) const {
-    double bytes = stringBytes(modules, params, parametric_);
-    double total = bytes + stringBytes(cur.size(), cur.paramCount(), cur.hasParameters()) +
-                   static_cast<double>(extra);
+    double bytes = stringBytes(modules, params, parametric_, cur.paramBytes());
+    double total =
+        bytes + stringBytes(cur.size(), cur.paramCount(), cur.hasParameters(), cur.paramBytes()) +
+        static_cast<double>(extra);
     if (total > static_cast<double>(limit) || params > 0xFFFFFFFFull ||
         (needBrackets_ && modules > 0xFFFFFFFEull)) {
         Diagnostic d{Severity::Error, SourceLocation{ls_.file, 0, 0},
@@ -238,17 +260,22 @@ void RewritingEngine::prepareOutput(const ModuleString& cur, ModuleString& next,
                                     std::size_t extra, std::size_t limit) const {
     // Up to kHeadroom times the room needed, within the memory limit as if every buffer
     // were full.
-    double bytes = stringBytes(modules, params, parametric);
-    double spare = static_cast<double>(limit) -
-                   stringBytes(cur.size(), cur.paramCount(), cur.hasParameters()) -
-                   static_cast<double>(extra);
+    double bytes = stringBytes(modules, params, parametric, cur.paramBytes());
+    double spare =
+        static_cast<double>(limit) -
+        stringBytes(cur.size(), cur.paramCount(), cur.hasParameters(), cur.paramBytes()) -
+        static_cast<double>(extra);
     double room = bytes > 0 ? std::clamp(spare / bytes, 1.0, static_cast<double>(kHeadroom)) : 1;
     auto most = [room](std::size_t n) { return static_cast<std::size_t>(room * n); };
     next.clear();
+    if (next.precision() != cur.precision()) next = ModuleString(cur.precision());
     sizeOutput(next.rawSymbols(), modules, most(modules));
     if (!parametric) return;
     sizeOutput(next.rawParamStart(), modules + 1, most(modules + 1));
-    sizeOutput(next.rawParams(), params, most(params));
+    if (cur.precision() == Precision::Single)
+        sizeOutput(next.rawFloats(), params, most(params));
+    else
+        sizeOutput(next.rawParams(), params, most(params));
 }
 
 // ---- fast path: deterministic, context-free, no parameters ------------------------------
@@ -465,14 +492,8 @@ bool RewritingEngine::matches(const Production& p, const ModuleString& s, std::s
                                              int stepNumber, const Production* p) const {
     std::vector<Diagnostic> ds = err.diagnostics();
     if (p && !ds.empty()) ds.back().location = p->location;
-    std::string module = ls_.symbols.name(s.symbol(i));
-    auto args = s.params(i);
-    if (!args.empty()) {
-        module += '(';
-        for (std::size_t k = 0; k < args.size(); ++k)
-            module += (k ? "," : "") + formatNumber(args[k]);
-        module += ')';
-    }
+    std::string module;
+    appendModuleText(module, ls_.symbols, s.symbol(i), s.params(i));
     if (!ds.empty())
         ds.back().message += " (while rewriting module " + std::to_string(i) + " '" + module +
                              "' in derivation step " + std::to_string(stepNumber) + ")";
@@ -658,10 +679,13 @@ void RewritingEngine::expandOne(const ModuleString& s, std::size_t i, std::uint6
 
 // ---- generic path -----------------------------------------------------------------------
 
-bool RewritingEngine::stepGeneric(const ModuleString& cur, ModuleString& next, int stepNumber,
-                                  int table, std::size_t limit,
-                                  const std::vector<std::uint8_t>* activeIn,
-                                  std::vector<std::uint8_t>* activeOut) {
+// The first pass of a generic step: the production for every module (into choice_), and
+// per chunk the modules and parameters its successors make and how many were rewritten.
+void RewritingEngine::chooseAll(const ModuleString& cur, int stepNumber, int table,
+                                const std::vector<std::uint8_t>* activeIn, std::size_t chunks,
+                                std::vector<std::size_t>& modCount,
+                                std::vector<std::size_t>& paramCount,
+                                std::vector<std::size_t>& rewritten) {
     std::size_t n = cur.size();
     if (needBrackets_) brackets_.build(cur.symbols());
     // Every element is written below: no copy of the old ones, and room for later steps.
@@ -670,23 +694,22 @@ bool RewritingEngine::stepGeneric(const ModuleString& cur, ModuleString& next, i
         choice_.reserve(2 * n);
     }
     choice_.resize(n);
-    std::size_t chunks = chunkCount(n);
-    std::vector<std::size_t> modCount(chunks, 0), paramCount(chunks, 0), rewritten(chunks, 0);
-    const bool parametricOut = parametric_ || cur.hasParameters();
+    modCount.assign(chunks, 0);
+    paramCount.assign(chunks, 0);
+    rewritten.assign(chunks, 0);
     const Symbol* syms = cur.symbols().data();
     // Module i's parameters are params[start[i] .. start[i + 1]) (none without start).
     const std::uint32_t* start = cur.hasParameters() ? cur.paramStarts().data() : nullptr;
-    const double* params = start && n ? cur.params(0).data() - start[0] : nullptr;
     const QuickChoice* quick = quick_[static_cast<std::size_t>(table)].data();
 
-    std::int32_t* choice = choice_.data();
+    ChoiceCode* choice = choice_.data();
     forEachChunk(
         n, chunks, [&, syms, start, quick, choice](std::size_t c, std::size_t b, std::size_t e) {
             // Locals, not captures: the stores below could alias the closure for the compiler.
             const Symbol* in = syms;
             const std::uint32_t* from = start;
             const QuickChoice* fast = quick;
-            std::int32_t* chosen = choice;
+            ChoiceCode* chosen = choice;
             const std::uint32_t* successorModules = successorModules_.data();
             const std::uint32_t* successorParams = successorParams_.data();
             const std::uint8_t* active = activeIn ? activeIn->data() : nullptr;
@@ -709,7 +732,7 @@ bool RewritingEngine::stepGeneric(const ModuleString& cur, ModuleString& next, i
                         }
                     }
                 }
-                chosen[i] = k;
+                chosen[i] = encodeChoice(k);
                 if (k == kIdentity) {
                     ++mods;
                     paramsOut += arity;
@@ -721,7 +744,7 @@ bool RewritingEngine::stepGeneric(const ModuleString& cur, ModuleString& next, i
                 std::size_t extra =
                     productions_[static_cast<std::size_t>(k)].predecessor.size() - 1;
                 if (extra > 0) [[unlikely]] {
-                    for (std::size_t q = 1; q <= extra; ++q) chosen[i + q] = kConsumed;
+                    for (std::size_t q = 1; q <= extra; ++q) chosen[i + q] = kConsumedCode;
                     i += extra;
                 }
             }
@@ -729,23 +752,53 @@ bool RewritingEngine::stepGeneric(const ModuleString& cur, ModuleString& next, i
             paramCount[c] = paramsOut;
             rewritten[c] = applied;
         });
+}
+
+bool RewritingEngine::stepGeneric(const ModuleString& cur, ModuleString& next, int stepNumber,
+                                  int table, std::size_t limit,
+                                  const std::vector<std::uint8_t>* activeIn,
+                                  std::vector<std::uint8_t>* activeOut) {
+    const std::size_t n = cur.size();
+    const std::size_t chunks = chunkCount(n);
+    std::vector<std::size_t> modCount, paramCount, rewritten;
+    chooseAll(cur, stepNumber, table, activeIn, chunks, modCount, paramCount, rewritten);
+    const bool parametricOut = parametric_ || cur.hasParameters();
 
     std::size_t totalMods = std::accumulate(modCount.begin(), modCount.end(), std::size_t(0));
     std::size_t totalParams = std::accumulate(paramCount.begin(), paramCount.end(), std::size_t(0));
-    checkLimit(stepNumber, totalMods, totalParams, n * sizeof(std::int32_t), cur, limit);
+    checkLimit(stepNumber, totalMods, totalParams, n * sizeof(ChoiceCode), cur, limit);
 
     std::vector<std::size_t> modOff(chunks), paramOff(chunks);
     std::exclusive_scan(modCount.begin(), modCount.end(), modOff.begin(), std::size_t(0));
     std::exclusive_scan(paramCount.begin(), paramCount.end(), paramOff.begin(), std::size_t(0));
 
-    prepareOutput(cur, next, totalMods, totalParams, parametricOut, n * sizeof(std::int32_t),
-                  limit);
+    prepareOutput(cur, next, totalMods, totalParams, parametricOut, n * sizeof(ChoiceCode), limit);
     Symbol* outSyms = next.rawSymbols().data();
     std::uint32_t* outStart = parametricOut ? next.rawParamStart().data() : nullptr;
-    double* outParams = parametricOut ? next.rawParams().data() : nullptr;
     if (parametricOut) outStart[totalMods] = static_cast<std::uint32_t>(totalParams);
     if (activeOut) activeOut->assign(totalMods, 0);
+    if (cur.precision() == Precision::Single)
+        writeGeneric(cur, cur.floatParams().data(), next.rawFloats().data(), outSyms, outStart,
+                     modOff, paramOff, chunks, stepNumber, activeOut);
+    else
+        writeGeneric(cur, cur.doubleParams().data(), next.rawParams().data(), outSyms, outStart,
+                     modOff, paramOff, chunks, stepNumber, activeOut);
+    return std::accumulate(rewritten.begin(), rewritten.end(), std::size_t(0)) > 0;
+}
 
+// The second pass of a generic step: every module's successor (or the module itself)
+// written at the offsets the first pass summed. T is how the strings store parameters.
+template <class T>
+void RewritingEngine::writeGeneric(const ModuleString& cur, const T* params, T* outParams,
+                                   Symbol* outSyms, std::uint32_t* outStart,
+                                   const std::vector<std::size_t>& modOff,
+                                   const std::vector<std::size_t>& paramOff, std::size_t chunks,
+                                   int stepNumber, std::vector<std::uint8_t>* activeOut) {
+    const std::size_t n = cur.size();
+    const bool parametricOut = outStart != nullptr;
+    const Symbol* syms = cur.symbols().data();
+    const std::uint32_t* start = cur.hasParameters() ? cur.paramStarts().data() : nullptr;
+    const ChoiceCode* choice = choice_.data();
     forEachChunk(
         n, chunks,
         [&, syms, start, params, outSyms, outStart, outParams, choice](std::size_t c, std::size_t b,
@@ -753,21 +806,21 @@ bool RewritingEngine::stepGeneric(const ModuleString& cur, ModuleString& next, i
             // Locals, not captures: the stores below could alias the closure for the compiler.
             const Symbol* in = syms;
             const std::uint32_t* from = start;
-            const double* values = params;
-            const std::int32_t* chosen = choice;
+            const T* values = params;
+            const ChoiceCode* chosen = choice;
             Symbol* symOut = outSyms;
             std::uint32_t* startOut = outStart;
-            double* paramOut = outParams;
+            T* paramOut = outParams;
             std::vector<double> slots(static_cast<std::size_t>(maxSlots_));
             std::size_t o = modOff[c], po = paramOff[c];
             for (std::size_t i = b; i < e; ++i) {
-                std::int32_t k = chosen[i];
-                if (k == kConsumed) continue;
-                if (k == kIdentity) {
+                const ChoiceCode code = chosen[i];
+                if (code == kConsumedCode) continue;
+                if (code == kIdentityCode) {
                     // A run of copies is copied at once: its parameters are contiguous in both
                     // strings, only shifted.
                     std::size_t j = i + 1;
-                    while (j < e && chosen[j] == kIdentity) ++j;
+                    while (j < e && chosen[j] == kIdentityCode) ++j;
                     std::memcpy(symOut + o, in + i, (j - i) * sizeof(Symbol));
                     if (parametricOut && from) {
                         auto shift = static_cast<std::uint32_t>(po) - from[i];
@@ -775,7 +828,7 @@ bool RewritingEngine::stepGeneric(const ModuleString& cur, ModuleString& next, i
                             startOut[o + t] = from[i + t] + shift;
                         std::size_t count = from[j] - from[i];
                         if (count > 0)
-                            std::memcpy(paramOut + po, values + from[i], count * sizeof(double));
+                            std::memcpy(paramOut + po, values + from[i], count * sizeof(T));
                         po += count;
                     } else if (parametricOut) {
                         std::fill(startOut + o, startOut + o + (j - i),
@@ -785,6 +838,7 @@ bool RewritingEngine::stepGeneric(const ModuleString& cur, ModuleString& next, i
                     i = j - 1;
                     continue;
                 }
+                const std::int32_t k = decodeChoice(code);
                 const Production& p = productions_[static_cast<std::size_t>(k)];
                 if (activeOut)
                     std::fill(
@@ -800,14 +854,23 @@ bool RewritingEngine::stepGeneric(const ModuleString& cur, ModuleString& next, i
                         f.direct && !genericOnly_) {
                         // Without contexts the predecessor's parameters are the slots, in order.
                         std::span<const double> vars;
-                        if (from) vars = {values + from[i], from[i + 1] - from[i]};
+                        if (from) {
+                            const std::size_t arity = from[i + 1] - from[i];
+                            if constexpr (std::is_same_v<T, double>) {
+                                vars = {values + from[i], arity};
+                            } else {
+                                for (std::size_t a = 0; a < arity; ++a)
+                                    slots[a] = static_cast<double>(values[from[i] + a]);
+                                vars = {slots.data(), arity};
+                            }
+                        }
                         const std::size_t modules = f.symbols.size(), args = f.args.size();
                         for (std::size_t m = 0; m < modules; ++m) {
                             symOut[o + m] = f.symbols[m];
                             startOut[o + m] = static_cast<std::uint32_t>(po + f.argStart[m]);
                         }
                         for (std::size_t a = 0; a < args; ++a)
-                            paramOut[po + a] = f.args[a]->evaluate(vars);
+                            paramOut[po + a] = static_cast<T>(f.args[a]->evaluate(vars));
                         o += modules;
                         po += args;
                         continue;
@@ -818,14 +881,48 @@ bool RewritingEngine::stepGeneric(const ModuleString& cur, ModuleString& next, i
                         symOut[o] = m.symbol;
                         startOut[o++] = static_cast<std::uint32_t>(po);
                         for (const auto& a : m.args)
-                            paramOut[po++] = evaluate(a, slots.data(), draws);
+                            paramOut[po++] = static_cast<T>(evaluate(a, slots.data(), draws));
                     }
                 } catch (const Error& err) {
                     rethrowAt(err, cur, i, stepNumber, &p);
                 }
             }
         });
-    return std::accumulate(rewritten.begin(), rewritten.end(), std::size_t(0)) > 0;
+}
+
+bool RewritingEngine::countStep(const ModuleString& cur, std::vector<std::uint64_t>& counts,
+                                int stepNumber, int table, std::size_t limit) {
+    table = std::clamp(table, 0, static_cast<int>(tableCount_) - 1);
+    // Blocks run per module in string order; the fast and context paths write directly.
+    if (sequential_ || (!genericOnly_ && !cur.hasParameters() && (fast_ || context_))) return false;
+    const std::size_t n = cur.size();
+    const std::size_t chunks = chunkCount(n);
+    std::vector<std::size_t> modCount, paramCount, rewritten;
+    chooseAll(cur, stepNumber, table, nullptr, chunks, modCount, paramCount, rewritten);
+    // The string is not written, but the limit is the one the step would meet.
+    checkLimit(stepNumber, std::accumulate(modCount.begin(), modCount.end(), std::size_t(0)),
+               std::accumulate(paramCount.begin(), paramCount.end(), std::size_t(0)),
+               n * sizeof(ChoiceCode), cur, limit);
+    const std::size_t symbolCount = ls_.symbols.size();
+    std::vector<std::vector<std::uint64_t>> tallies(chunks);
+    const Symbol* syms = cur.symbols().data();
+    const ChoiceCode* choice = choice_.data();
+    forEachChunk(n, chunks, [&](std::size_t c, std::size_t b, std::size_t e) {
+        std::vector<std::uint64_t>& t = tallies[c];
+        t.assign(symbolCount, 0);
+        for (std::size_t i = b; i < e; ++i) {
+            const ChoiceCode code = choice[i];
+            if (code == kIdentityCode) {
+                ++t[syms[i]];
+            } else if (code != kConsumedCode) {
+                for (Symbol s : flat_[static_cast<std::size_t>(decodeChoice(code))].symbols) ++t[s];
+            }
+        }
+    });
+    counts.assign(symbolCount, 0);
+    for (const auto& t : tallies)
+        for (std::size_t k = 0; k < symbolCount; ++k) counts[k] += t[k];
+    return true;
 }
 
 // ---- sequential path: productions with blocks ------------------------------------------
@@ -839,7 +936,7 @@ bool RewritingEngine::stepSequential(const ModuleString& cur, ModuleString& next
                                      std::vector<std::uint8_t>* activeOut) {
     std::size_t n = cur.size();
     if (needBrackets_) brackets_.build(cur.symbols());
-    ModuleString out;
+    ModuleString out(cur.precision());
     out.reserve(n, cur.paramCount());
     if (parametric_ || cur.hasParameters()) out.rawParamStart().assign(1, 0);
     if (activeOut) activeOut->clear();

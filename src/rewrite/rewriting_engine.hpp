@@ -48,6 +48,12 @@ class RewritingEngine {
     // True when some symbol has a production in some table (false: identity for ever).
     bool rewrites(Symbol s) const;
 
+    // The modules of each symbol (indexed by symbol id) that step() would write, counted
+    // without writing them. False (counts untouched) when such a step must be done in full:
+    // productions with blocks, and the paths that write as they choose.
+    bool countStep(const ModuleString& cur, std::vector<std::uint64_t>& counts, int stepNumber,
+                   int table, std::size_t memoryLimit);
+
     // Appends to `out` the successor of module i of `s` (or the module itself when no
     // production applies), choosing as a derivation step would for the module at
     // `position` of its string: the depth-first streamed derivation uses this.
@@ -89,7 +95,17 @@ class RewritingEngine {
     // the error already names it), naming the module and the derivation step.
     [[noreturn]] void rethrowAt(const class Error& err, const ModuleString& s, std::size_t i,
                                 int stepNumber, const Production* p = nullptr) const;
-    static double stringBytes(std::size_t modules, std::size_t params, bool parametric);
+    static double stringBytes(std::size_t modules, std::size_t params, bool parametric,
+                              std::size_t paramBytes);
+    void chooseAll(const ModuleString& cur, int stepNumber, int table,
+                   const std::vector<std::uint8_t>* activeIn, std::size_t chunks,
+                   std::vector<std::size_t>& modCount, std::vector<std::size_t>& paramCount,
+                   std::vector<std::size_t>& rewritten);
+    template <class T>
+    void writeGeneric(const ModuleString& cur, const T* params, T* outParams, Symbol* outSyms,
+                      std::uint32_t* outStart, const std::vector<std::size_t>& modOff,
+                      const std::vector<std::size_t>& paramOff, std::size_t chunks, int stepNumber,
+                      std::vector<std::uint8_t>* activeOut);
     void prepareOutput(const ModuleString& cur, ModuleString& next, std::size_t modules,
                        std::size_t params, bool parametric, std::size_t extra,
                        std::size_t limit) const;
@@ -155,7 +171,8 @@ class RewritingEngine {
 
     BracketIndex brackets_;
     std::vector<double> scratchSlots_, scratchWeights_, scratchArgs_;
-    std::vector<std::int32_t, UninitializedAllocator<std::int32_t>> choice_;
+    // The production chosen for every module of the step being written (see ChoiceCode).
+    std::vector<std::uint16_t, UninitializedAllocator<std::uint16_t>> choice_;
 };
 
 }  // namespace graftal

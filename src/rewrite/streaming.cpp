@@ -53,10 +53,14 @@ void streamDerivation(const LSystem& ls, int steps, ModuleSink& sink,
     for (std::size_t s = 0; s < fixed.size(); ++s)
         fixed[s] = !engine.rewrites(static_cast<Symbol>(s));
 
-    std::vector<ModuleString> level(static_cast<std::size_t>(steps) + 1);
+    // Each level stores parameters as a derivation would: streamed and held strings agree.
+    std::vector<ModuleString> level(static_cast<std::size_t>(steps) + 1,
+                                    ModuleString(options.precision));
     std::vector<std::size_t> cursor(level.size(), 0);
     std::vector<std::uint64_t> position(level.size(), 0);
+    std::vector<double> scratch;
     level[0] = ls.axiom;
+    level[0].setPrecision(options.precision);
     std::size_t d = 0;
     // A streamed derivation is one long step: the token is looked at every few thousand
     // expansions, often enough to stop within a millisecond, rarely enough to cost nothing.
@@ -72,7 +76,7 @@ void streamDerivation(const LSystem& ls, int steps, ModuleSink& sink,
         const ModuleString& here = level[d];
         Symbol s = here.symbol(i);
         if (d == static_cast<std::size_t>(steps) || fixed[s]) {
-            sink.module(s, here.params(i));
+            sink.module(s, here.params(i).doubles(scratch));
             // Progress: the modules of the last string out so far, every million.
             if ((++emitted & 0xFFFFFu) == 0 && options.progress)
                 options.progress(steps, static_cast<std::size_t>(emitted));

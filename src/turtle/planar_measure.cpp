@@ -118,7 +118,7 @@ class PlanarWalk {
     bool walk(const ModuleString& modules, StreamedMeasure& out);
     template <bool kParams>
     std::size_t fastRun(const ModuleString& modules, std::size_t i, std::uint64_t* counts);
-    bool slowModule(TurtleOp op, std::span<const double> args);
+    bool slowModule(TurtleOp op, ParamView args);
 
     std::array<TurtleOp, kMaxSymbols> ops_;
     double step_ = 1, cos_ = 1, sinLeft_ = 0, sinRight_ = 0, turnSign_ = 1;
@@ -189,7 +189,7 @@ std::size_t PlanarWalk::fastRun(const ModuleString& modules, std::size_t i, std:
             case TurtleOp::MoveNoVertex: {
                 double length = step;
                 if constexpr (kParams) {
-                    std::span<const double> args = modules.params(i);
+                    ParamView args = modules.params(i);
                     if (!args.empty()) {
                         length = args[0];
                         if (!std::isfinite(length)) goto stop;
@@ -287,7 +287,7 @@ stop:
 
 // One module with every case (the generic turtle's apply() in the plane); false when
 // the walk must give way to the generic turtle.
-bool PlanarWalk::slowModule(TurtleOp op, std::span<const double> args) {
+bool PlanarWalk::slowModule(TurtleOp op, ParamView args) {
     WalkState& w = state_;
     Frame& t = w.turtle;
     auto extend = [&](double x, double y) {

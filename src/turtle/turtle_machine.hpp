@@ -204,7 +204,7 @@ class TurtleMachine {
         for (std::size_t i = 0; i < syms.size(); ++i) {
             if (wanted && syms[i] < wanted->size() && (*wanted)[syms[i]])
                 (*visit)(i, TurtleFrame{state_.position, state_.heading, state_.left, state_.up});
-            module(syms[i], params ? m.params(i) : std::span<const double>{}, i);
+            module(syms[i], params ? m.params(i).doubles(scratch_) : std::span<const double>{}, i);
         }
         finish();
     }
@@ -588,6 +588,7 @@ class TurtleMachine {
     std::uint64_t rotations_ = 0;
     TurtleState state_;
     std::vector<TurtleState> stack_;
+    std::vector<double> scratch_;  // parameters of a string of floats, as doubles
     std::vector<std::vector<Vec3>> polygons_;
     std::vector<std::size_t> polygonOpenedAt_;
 };
