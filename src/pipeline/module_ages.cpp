@@ -21,11 +21,12 @@ ModuleString agedString(const ModuleString& modules, const std::vector<ModuleAge
         countOf[a.symbol] = a.parameterCount;
     }
     const auto& starts = aged.paramStarts();
-    auto& params = aged.rawParams();
     for (std::size_t i = 0; i < aged.size(); ++i) {
         const Symbol s = aged.symbol(i);
         if (!ageOf[s] || starts[i + 1] - starts[i] != countOf[s]) continue;
-        params[starts[i] + ageOf[s] - 1] += fraction;
+        // setParam stores into the string's own precision (floats or doubles).
+        const std::size_t k = ageOf[s] - 1;
+        aged.setParam(starts[i] + k, aged.params(i)[k] + fraction);
     }
     return aged;
 }

@@ -148,11 +148,14 @@ try {
   assert.ok(fs.readFileSync(file, 'utf8').includes('#define A2 80\n'), 'write back puts the value into the file');
 
   console.log('- The step slider');
-  // The step slider changes the picture.
-  before = await pictures();
+  // The step slider changes the picture. Write back saved the file, and the page may
+  // still redraw for that save: wait for the picture of step 3 itself, not just any.
   await page.$eval('#step', (s) => { s.value = 3; s.dispatchEvent(new Event('input')); });
-  await nextPicture(before);
-  const step3 = await pixels('#view2d');
+  let step3 = await pixels('#view2d');
+  for (let i = 0; i < 300 && step3.hash === moved.hash; ++i) {
+    await page.waitForTimeout(100);
+    step3 = await pixels('#view2d');
+  }
   assert.ok(step3.ink > 0 && step3.ink < moved.ink, 'step 3 draws less than step 10');
 
   console.log('- The string search and play');
