@@ -142,10 +142,11 @@ done
 
 # Developmental figures as animations (graftal animate): one frame per step, the camera
 # fixed on the grown plant; the raceme and the fern declare their modules' ages and grow
-# between steps. Anabaena (Fig 1.4) draws nothing but its derivation, and the signals of
-# Fig 3.12 and 3.13 change no segment's drawing (reached and unreached segments look the
-# same), so they are left out.
+# between steps. Anabaena (Fig 1.4) draws nothing, so its derivation diagram grows a row
+# each step. The signals of Fig 3.12 and 3.13 change no segment's drawing (reached and
+# unreached segments look the same), so they are left out.
 animations=(
+    "fig1.4-anabaena --fps 2 --hold 2"
     "fig3.7-lily-of-the-valley --fps 4 --hold 2"
     "fig3.9-lychnis-3d --fps 6 --hold 2"
     "fig3.14a-acropetal-signal --fps 4 --hold 2"
@@ -161,7 +162,8 @@ animations=(
     echo "## Development"
     echo
     echo "Developmental figures drawn step by step by \`graftal animate\` (400x400 GIFs; the"
-    echo "raceme and the fern grow between steps from their declared module ages)."
+    echo "raceme and the fern grow between steps from their declared module ages; Anabaena,"
+    echo "whose string draws nothing, as its derivation diagram growing a row per step)."
     echo
     echo "| animation | figure | command |"
     echo "| --- | --- | --- |"

@@ -429,3 +429,58 @@ TEST(Animation, RayTracedGifsAreQuantisedWithOrWithoutDithering) {
     }
     EXPECT_NE(readFile(dir.path() / "plain.gif"), readFile(dir.path() / "dithered.gif"));
 }
+
+namespace {
+
+// Pixels that are not the background colour (the top-left corner's).
+std::size_t inkPixels(const RgbaImage& image) {
+    std::size_t n = 0;
+    const std::uint8_t* corner = image.at(0, 0);
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x)
+            if (!std::equal(corner, corner + 3, image.at(x, y))) ++n;
+    return n;
+}
+
+}  // namespace
+
+TEST(Animation, AStringThatDrawsNothingAnimatesItsDerivationRowByRow) {
+    // Anabaena's filament (Fig 1.4) has no turtle meaning: its development is the diagram
+    // of its derivation, one row more each step, the cells where the last frame has them.
+    Model model = loadExample(example("fig1.4-anabaena.l"));
+    AnimationRequest request = smallRequest(300);
+    request.to = 4;
+    AnimationResult result;
+    auto frames = animationFrames(model, request, &result);
+    EXPECT_EQ(result.route, RenderRoute::DerivationDiagram);
+    ASSERT_EQ(frames.size(), 5u);
+    ASSERT_FALSE(result.notes.empty());
+    EXPECT_NE(result.notes.front().message.find("derivation"), std::string::npos);
+    for (std::size_t i = 1; i < frames.size(); ++i) {
+        EXPECT_EQ(frames[i].step, int(i));
+        EXPECT_GT(inkPixels(frames[i].image), inkPixels(frames[i - 1].image)) << i;
+    }
+    // The rows drawn stay where they are: the axiom's row of the first frame is the same
+    // pixels in the last.
+    const RgbaImage& first = frames.front().image;
+    const RgbaImage& last = frames.back().image;
+    std::size_t same = 0, inked = 0;
+    for (int y = 0; y < first.height; ++y)
+        for (int x = 0; x < first.width; ++x)
+            if (!std::equal(first.at(0, 0), first.at(0, 0) + 3, first.at(x, y))) {
+                ++inked;
+                same += std::equal(first.at(x, y), first.at(x, y) + 4, last.at(x, y));
+            }
+    ASSERT_GT(inked, 0u);
+    EXPECT_EQ(same, inked);
+
+    // Asked for on a model that draws (the bush), --derivation animates the diagram too;
+    // it does not turn.
+    AnimationRequest asked = smallRequest(200);
+    asked.derivationDiagram = true;
+    AnimationResult bush;
+    EXPECT_EQ(animationFrames(parseModel(kBush), asked, &bush).size(), 5u);
+    EXPECT_EQ(bush.route, RenderRoute::DerivationDiagram);
+    asked.turntableDegrees = 10;
+    EXPECT_THROW(animationFrames(parseModel(kBush), asked), Error);
+}

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "graftal/animation_file.hpp"
 #include "graftal/module_string.hpp"
 #include "graftal/output.hpp"
 
@@ -56,6 +57,9 @@ DerivationDiagram layoutDerivationDiagram(const std::vector<ModuleString>& steps
                                           const SymbolTable& symbols, const RenderOptions& o);
 
 void writeDerivationDiagramSvg(const DerivationDiagram& diagram, std::ostream& out);
+// The diagram as an image in memory (an animation's frame). Throws Error for a size out of
+// range.
+RgbaImage drawDerivationDiagram(const DerivationDiagram& diagram);
 // Writes the diagram by the extension of `path` (.svg, .png or .pdf), atomically (nothing is
 // left at `path` on failure). Throws Error.
 void writeDerivationDiagram(const DerivationDiagram& diagram, const std::filesystem::path& path);

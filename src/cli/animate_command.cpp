@@ -29,6 +29,9 @@ AnimateCommand::AnimateCommand(CLI::App& app,
                  "(default 1)");
     c.add_option("--turntable", request_.turntableDegrees,
                  "turn the camera by DEG about the up axis every frame");
+    c.add_flag("--derivation", request_.derivationDiagram,
+               "animate the derivation diagram (a row of cells more each step; chosen by itself "
+               "when the string draws nothing)");
     c.add_flag("--global-palette", request_.globalPalette, "GIF: one palette for all frames");
     c.add_flag("--dither", request_.dither,
                "GIF: error diffusion for frames of more than 256 colours");

@@ -156,6 +156,42 @@ void writePngFile(const DerivationDiagram& d, const std::filesystem::path& path)
         throw cairoError(path, "cannot write PNG", st);
 }
 
+}  // namespace
+
+RgbaImage drawDerivationDiagram(const DerivationDiagram& d) {
+    checkSize(d, "derivation diagram", 16384);
+    const int w = static_cast<int>(d.width), h = static_cast<int>(d.height);
+    SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, w, h),
+                       &cairo_surface_destroy);
+    if (auto st = cairo_surface_status(surface.get()); st != CAIRO_STATUS_SUCCESS)
+        throw cairoError("derivation diagram", "cannot create the image", st);
+    {
+        ContextPtr cr(cairo_create(surface.get()), &cairo_destroy);
+        drawDiagram(cr.get(), d);
+        if (auto st = cairo_status(cr.get()); st != CAIRO_STATUS_SUCCESS)
+            throw cairoError("derivation diagram", "cannot draw the derivation", st);
+    }
+    cairo_surface_flush(surface.get());
+    RgbaImage image(w, h);
+    const unsigned char* data = cairo_image_surface_get_data(surface.get());
+    const int stride = cairo_image_surface_get_stride(surface.get());
+    for (int y = 0; y < h; ++y) {
+        // ARGB32 is one native-endian word per pixel; the background is opaque, so the
+        // premultiplied colours are the colours.
+        const auto* row = reinterpret_cast<const std::uint32_t*>(data + std::size_t(y) * stride);
+        for (int x = 0; x < w; ++x) {
+            std::uint8_t* px = &image.pixels[(std::size_t(y) * w + x) * 4];
+            px[0] = std::uint8_t(row[x] >> 16);
+            px[1] = std::uint8_t(row[x] >> 8);
+            px[2] = std::uint8_t(row[x]);
+            px[3] = 255;
+        }
+    }
+    return image;
+}
+
+namespace {
+
 void writePdfFile(const DerivationDiagram& d, const std::filesystem::path& path) {
     checkSize(d, path, 14400);
     SurfacePtr surface(cairo_pdf_surface_create(path.c_str(), d.width, d.height),
@@ -214,8 +250,8 @@ void writeDerivationDiagramSvg(const DerivationDiagram& d, std::ostream& out) {
                 << "/>\n"
                 << "<text x=\"" << number(cx) << "\" y=\"" << number(labelBaseline(c, d.labelSize))
                 << "\" font-size=\"" << number(d.labelSize)
-                << "\" font-weight=\"bold\" text-anchor=\"middle\" fill=\"" << hexColor(kInk) << "\">"
-                << escaped(c.label) << "</text>\n";
+                << "\" font-weight=\"bold\" text-anchor=\"middle\" fill=\"" << hexColor(kInk)
+                << "\">" << escaped(c.label) << "</text>\n";
             if (!c.parameters.empty())
                 out << "<text x=\"" << number(cx) << "\" y=\"" << number(parameterBaseline(c))
                     << "\" font-size=\"" << number(d.parameterSize)

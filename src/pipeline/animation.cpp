@@ -13,6 +13,7 @@
 #include "graftal/bspline.hpp"
 #include "graftal/color_map.hpp"
 #include "graftal/derivation.hpp"
+#include "graftal/derivation_diagram.hpp"
 #include "graftal/framed_picture.hpp"
 #include "graftal/mesh.hpp"
 #include "graftal/projection.hpp"
@@ -143,6 +144,27 @@ void addNote(AnimationResult& result, const AnimationRequest& request, const Mod
     result.notes.push_back(std::move(d));
 }
 
+// The derivation diagram of all the steps drawn, laid out once so that every frame keeps
+// its cells where the last one has them; rows are numbered by their derivation step.
+DerivationDiagram animatedDiagram(const Model& model, const AnimationRequest& request,
+                                  const std::vector<ModuleString>& strings) {
+    RenderOptions o = request.picture;
+    if (request.background)
+        o.background = *request.background;
+    else if (model.view.background)
+        o.background = *model.view.background;
+    DerivationDiagram d = layoutDerivationDiagram(strings, model.lsystem.symbols, o);
+    for (DiagramRow& row : d.rows) row.step += request.from;
+    return d;
+}
+
+// The frame of `step`: the rows of the steps up to it.
+DerivationDiagram diagramUpTo(const DerivationDiagram& all, int step) {
+    DerivationDiagram d = all;
+    std::erase_if(d.rows, [step](const DiagramRow& row) { return row.step > step; });
+    return d;
+}
+
 // The sequence as it is made: the strings, then the scenes of every distinct frame.
 class Sequence {
   public:
@@ -160,6 +182,7 @@ class Sequence {
     }
 
     bool continuous() const { return !ages_.empty(); }
+    const std::vector<ModuleString>& strings() const { return strings_; }
 
     // The scene of `step` at `fraction` of the way to the next one.
     Scene scene(int step, double fraction) const {
@@ -213,8 +236,8 @@ void checkAnimationRequest(const AnimationRequest& r) {
     if (r.picture.width < 1 || r.picture.height < 1 || r.picture.width > 16384 ||
         r.picture.height > 16384)
         throw requestError("--size must be from 1x1 to 16384x16384 for an animation");
-    if (r.derivationDiagram)
-        throw requestError("an animation draws the turtle's pictures, not the derivation diagram");
+    if (r.derivationDiagram && r.turntableDegrees != 0)
+        throw requestError("a derivation diagram does not turn: leave out --turntable");
     if (r.stream == StreamPolicy::Always)
         throw requestError("an animation needs every step's string; it cannot stream");
     if (!r.output.empty()) {
@@ -262,10 +285,36 @@ AnimationResult animate(const Model& model, const AnimationRequest& request,
         threeD = threeD || slot->is3D;
         anything = anything || !drawsNothing(*slot);
     }
-    if (!anything)
-        throw Error(SourceLocation{model.lsystem.file, 0, 0},
-                    "the string draws nothing at any step, so there is nothing to animate "
-                    "(graftal render --derivation draws its derivation)");
+    if (!anything && !request.derivationDiagram) {
+        if (request.turntableDegrees != 0)
+            throw Error(SourceLocation{model.lsystem.file, 0, 0},
+                        "the string draws nothing at any step, and its derivation diagram does "
+                        "not turn: leave out --turntable");
+        addNote(result, request, model,
+                "the string draws nothing; animating its derivation instead (a row more each "
+                "step)");
+    }
+    if (!anything || request.derivationDiagram) {
+        result.route = RenderRoute::DerivationDiagram;
+        const DerivationDiagram diagram = animatedDiagram(model, request, sequence.strings());
+        const int total = result.frames;
+        std::vector<std::optional<RgbaImage>> images(std::size_t(result.to - result.from + 1));
+        for (std::size_t index = 0; index < plan.size(); ++index) {
+            request.cancel.check();
+            const FramePlan& f = plan[index];
+            auto& image = images[std::size_t(f.step - result.from)];
+            if (!image) image = drawDerivationDiagram(diagramUpTo(diagram, f.step));
+            AnimationFrame frame;
+            frame.index = int(index);
+            frame.step = f.step;
+            frame.age = f.step;
+            frame.seconds = f.seconds;
+            frame.image = *image;
+            deliver(frame);
+            if (request.frameProgress) request.frameProgress(int(index) + 1, total);
+        }
+        return result;
+    }
     const bool rayTraced = threeD && !request.view;
     result.route = rayTraced ? RenderRoute::RayTraced : RenderRoute::LineArt;
     const int total = result.frames;
