@@ -116,20 +116,14 @@ namespace {
 // open stands before a production's arrow (or there is no arrow).
 int openBlockDepth(std::string_view line, bool& beforeArrow) {
     int depth = 0;
-    bool inString = false;
     std::size_t firstOpen = std::string_view::npos;
     std::vector<std::size_t> open;
     for (std::size_t i = 0; i < line.size(); ++i) {
+        i = skipStringLiteral(line, i);
+        if (i >= line.size()) break;
         char c = line[i];
-        if (inString) {
-            if (c == '\\')
-                ++i;
-            else if (c == '"')
-                inString = false;
-            continue;
-        }
         if (c == '"') {
-            inString = true;
+            continue;
         } else if (c == '{') {
             open.push_back(i);
             ++depth;

@@ -48,4 +48,18 @@ bool prepareSource(std::string_view bytes, const std::string& fileName, SourceTe
 // as in cpfg, a line starting with a TAB continues the line before it.
 void joinBlockLines(SourceText& text);
 
+// When text[i] opens a string literal ("...", backslash escapes), the index of its closing
+// quote (text.size() when it is not closed); any other i is returned as it is. The
+// scanners that count brackets skip strings with it.
+inline std::size_t skipStringLiteral(std::string_view text, std::size_t i) {
+    if (i >= text.size() || text[i] != '"') return i;
+    for (++i; i < text.size(); ++i) {
+        if (text[i] == '\\')
+            ++i;
+        else if (text[i] == '"')
+            return i;
+    }
+    return text.size();
+}
+
 }  // namespace graftal

@@ -2,6 +2,8 @@
 // expressions inside are handed to the expression compiler.
 #include "statement_parser.hpp"
 
+#include "source_text.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -10,18 +12,12 @@ namespace graftal::parsing {
 
 std::size_t matchingBrace(std::string_view text, std::size_t open) {
     int depth = 0;
-    bool inString = false;
     for (std::size_t i = open; i < text.size(); ++i) {
+        i = skipStringLiteral(text, i);
+        if (i >= text.size()) break;
         char c = text[i];
-        if (inString) {
-            if (c == '\\')
-                ++i;
-            else if (c == '"')
-                inString = false;
-            continue;
-        }
         if (c == '"')
-            inString = true;
+            continue;
         else if (c == '{')
             ++depth;
         else if (c == '}' && --depth == 0)
@@ -76,19 +72,13 @@ class StatementParser {
     // Index of the first `stop` at depth 0 (outside parentheses and strings) from `from`.
     std::size_t findTopLevel(std::size_t from, char stop) const {
         int depth = 0;
-        bool inString = false;
         for (std::size_t i = from; i < text_.size(); ++i) {
+            if (text_[i] == stop && depth == 0) return i;
+            i = skipStringLiteral(text_, i);
+            if (i >= text_.size()) break;
             char c = text_[i];
-            if (inString) {
-                if (c == '\\')
-                    ++i;
-                else if (c == '"')
-                    inString = false;
-                continue;
-            }
-            if (c == stop && depth == 0) return i;
             if (c == '"')
-                inString = true;
+                continue;
             else if (c == '(' || c == '[')
                 ++depth;
             else if (c == ')' || c == ']')
