@@ -83,9 +83,11 @@ fuzz-deps: deps
 	$(call install-missing,$(FUZZ_PACKAGES))
 
 # RelWithDebInfo at -O1 without NDEBUG: the library's assertions stay on while fuzzing.
+# Static layers: a shared one is linked with --no-undefined, and the sanitizers' symbols
+# come only with the fuzzer's executable.
 fuzz-build: fuzz-deps
 	@cmake -S . -B $(FUZZ_BUILD_DIR) -DCMAKE_CXX_COMPILER=clang++ -DGRAFTAL_FUZZ=ON \
-	  -DGRAFTAL_BUILD_TESTS=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  -DGRAFTAL_BUILD_TESTS=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBUILD_SHARED_LIBS=OFF \
 	  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" -DCMAKE_CXX_FLAGS="$(FUZZ_FLAGS)" > /dev/null
 	@cmake --build $(FUZZ_BUILD_DIR) -j $(JOBS) --target graftal_fuzzers
 
