@@ -21,6 +21,13 @@ struct RgbaImage {
     RgbaImage() = default;
     RgbaImage(int w, int h) : width(w), height(h), pixels(std::size_t(w) * h * 4, 255) {}
     const std::uint8_t* at(int x, int y) const { return &pixels[(std::size_t(y) * width + x) * 4]; }
+    // An opaque image from packed RGB bytes (what the ray tracer makes).
+    static RgbaImage fromRgb(const std::vector<std::uint8_t>& rgb, int w, int h) {
+        RgbaImage image(w, h);
+        for (std::size_t i = 0, n = std::size_t(w) * h; i < n; ++i)
+            for (int k = 0; k < 3; ++k) image.pixels[4 * i + k] = rgb[3 * i + k];
+        return image;
+    }
     friend bool operator==(const RgbaImage&, const RgbaImage&) = default;
 };
 

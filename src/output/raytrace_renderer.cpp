@@ -3,7 +3,6 @@
 // hemisphere. Everything a pixel gets is a pure function of the pixel, so the image is the
 // same for any number of threads. The PNG goes through Cairo's writer, atomically, as the
 // 2D pictures do.
-#include <cairo.h>
 #include <embree3/rtcore.h>
 #include <unistd.h>
 
@@ -23,6 +22,7 @@
 #include <vector>
 
 #include "core/random_stream.hpp"
+#include "graftal/animation_file.hpp"
 #include "graftal/diagnostics.hpp"
 #include "graftal/framed_picture.hpp"
 #include "graftal/output.hpp"
@@ -102,7 +102,6 @@ void onEmbreeError(void* user, RTCError code, const char* message) {
 
 using DevicePtr = std::unique_ptr<RTCDeviceTy, decltype(&rtcReleaseDevice)>;
 using ScenePtr = std::unique_ptr<RTCSceneTy, decltype(&rtcReleaseScene)>;
-using SurfacePtr = std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)>;
 
 void checkEmbree(RTCDevice device, EmbreeLog& log, const char* doing) {
     const RTCError code = rtcGetDeviceError(device);
@@ -550,31 +549,6 @@ void fillBackground(std::vector<unsigned char>& pixels, const Rgb& background) {
     for (std::size_t i = 0; i < pixels.size(); i += 3) std::memcpy(&pixels[i], bytes, 3);
 }
 
-void writePngFile(const std::vector<unsigned char>& rgb, int width, int height,
-                  const fs::path& path) {
-    SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, width, height),
-                       &cairo_surface_destroy);
-    if (auto st = cairo_surface_status(surface.get()); st != CAIRO_STATUS_SUCCESS)
-        throw fileError(path,
-                        std::string("cannot create the image: ") + cairo_status_to_string(st));
-    cairo_surface_flush(surface.get());
-    unsigned char* data = cairo_image_surface_get_data(surface.get());
-    const int stride = cairo_image_surface_get_stride(surface.get());
-    for (int y = 0; y < height; ++y) {
-        // ARGB32 is one native-endian 32-bit word per pixel; opaque, so premultiplying by
-        // alpha changes nothing.
-        auto* row = reinterpret_cast<std::uint32_t*>(data + static_cast<std::size_t>(y) * stride);
-        const unsigned char* src = rgb.data() + static_cast<std::size_t>(y) * width * 3;
-        for (int x = 0; x < width; ++x)
-            row[x] = 0xFF000000u | (std::uint32_t{src[3 * x]} << 16) |
-                     (std::uint32_t{src[3 * x + 1]} << 8) | std::uint32_t{src[3 * x + 2]};
-    }
-    cairo_surface_mark_dirty(surface.get());
-    if (auto st = cairo_surface_write_to_png(surface.get(), path.c_str());
-        st != CAIRO_STATUS_SUCCESS)
-        throw fileError(path, std::string("cannot write PNG: ") + cairo_status_to_string(st));
-}
-
 }  // namespace
 
 std::vector<unsigned char> renderRaytracedPixels(const Mesh& mesh, const RaytraceOptions& options) {
@@ -629,9 +603,7 @@ void renderRaytraced(const Mesh& mesh, const RaytraceOptions& options, const fs:
         throw fileError(path, e.messages());
     }
 
-    writeFileAtomically(path, [&](const fs::path& temporary) {
-        writePngFile(pixels, options.width, options.height, temporary);
-    });
+    writeRgbaPng(RgbaImage::fromRgb(pixels, options.width, options.height), path);
 }
 
 }  // namespace graftal

@@ -126,17 +126,6 @@ Vec3 rotatedAbout(const Vec3& p, const Vec3& centre, Vec3 axis, double degrees) 
            axis * (dot(axis, v) * (1 - std::cos(a)));
 }
 
-RgbaImage rgbaFromRgb(const std::vector<unsigned char>& rgb, int width, int height) {
-    RgbaImage image(width, height);
-    for (std::size_t i = 0, n = std::size_t(width) * height; i < n; ++i) {
-        image.pixels[4 * i] = rgb[3 * i];
-        image.pixels[4 * i + 1] = rgb[3 * i + 1];
-        image.pixels[4 * i + 2] = rgb[3 * i + 2];
-        image.pixels[4 * i + 3] = 255;
-    }
-    return image;
-}
-
 void addNote(AnimationResult& result, const AnimationRequest& request, const Model& model,
              std::string message) {
     Diagnostic d{Severity::Note, SourceLocation{model.lsystem.file, 0, 0}, std::move(message)};
@@ -417,7 +406,7 @@ AnimationResult animate(const Model& model, const AnimationRequest& request,
             o.camera.viewpoint = rotatedAbout(*camera.viewpoint, *camera.target, camera.up,
                                               request.turntableDegrees * double(index));
         handOver(f, int(index),
-                 rgbaFromRgb(renderRaytracedPixels(*meshes[key(f)], o), o.width, o.height));
+                 RgbaImage::fromRgb(renderRaytracedPixels(*meshes[key(f)], o), o.width, o.height));
     }
     return result;
 }
