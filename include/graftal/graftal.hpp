@@ -20,6 +20,7 @@
 #include "graftal/map_drawing.hpp"
 #include "graftal/map_lsystem.hpp"
 #include "graftal/mesh.hpp"
+#include "graftal/mesh_scene.hpp"
 #include "graftal/model.hpp"
 #include "graftal/module_string.hpp"
 #include "graftal/output.hpp"

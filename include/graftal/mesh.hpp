@@ -50,6 +50,12 @@ struct MeshOptions {
     double widthScale = 1;     // cylinder diameter = segment width * widthScale
     int surfaceDivisions = 8;  // per patch side when tessellating bicubic patches
     bool cylinders = true;     // false: segments are left out (polygons and surfaces only)
+    // buildMeshScene: repeated organs (surfaces, discs, spheres) become prototypes placed
+    // by transforms instead of copies.
+    bool instancing = true;
+    // buildMeshScene: segments whose drawn radius is below this (model units) become
+    // CurveSegments instead of tubes; 0 keeps every segment a tube.
+    double curveRadius = 0;
 };
 
 // Builds the mesh of a scene. Surfaces named in the scene are looked up in `surfaces`
