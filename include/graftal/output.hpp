@@ -17,7 +17,8 @@
 
 namespace graftal {
 struct Mesh;
-}
+struct MeshScene;
+}  // namespace graftal
 
 namespace graftal {
 
@@ -82,6 +83,22 @@ void writePdf(const Scene& scene, const RenderOptions& o, const std::filesystem:
 void writeObj(const Mesh& mesh, const std::filesystem::path& path);  // + .mtl beside it
 void writePly(const Mesh& mesh, const std::filesystem::path& path);  // binary, vertex colours
 void writeGlb(const Mesh& mesh, const std::filesystem::path& path);  // glTF 2.0 binary
+
+// How a GLB stores a scene's repeated organs and its buffers.
+struct GlbOptions {
+    // Prototypes placed with EXT_mesh_gpu_instancing; false copies every placement (for
+    // viewers without the extension).
+    bool instancing = true;
+    // Vertex and index buffers compressed with EXT_meshopt_compression.
+    bool compression = false;
+};
+
+// 3D files of an instanced scene (mesh_scene.hpp). OBJ and PLY have no instancing: they
+// get every placement copied; curves are not written (build with curveRadius = 0).
+void writeObj(const MeshScene& scene, const std::filesystem::path& path);
+void writePly(const MeshScene& scene, const std::filesystem::path& path);
+void writeGlb(const MeshScene& scene, const std::filesystem::path& path,
+              const GlbOptions& options = {});
 
 // The picture formats of the format table (file_format.hpp).
 using ImageFormat = FileFormat;

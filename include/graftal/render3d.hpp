@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "graftal/mesh.hpp"
+#include "graftal/mesh_scene.hpp"
 #include "graftal/scene.hpp"
 
 namespace graftal {
@@ -41,5 +42,12 @@ void renderRaytraced(const Mesh& mesh, const RaytraceOptions& options,
 
 // The same image into memory, RGB8 rows top to bottom (for tests and other front ends).
 std::vector<unsigned char> renderRaytracedPixels(const Mesh& mesh, const RaytraceOptions& options);
+
+// The same for an instanced scene: prototypes are placed as instances, curves drawn as
+// round curves.
+void renderRaytraced(const MeshScene& scene, const RaytraceOptions& options,
+                     const std::filesystem::path& path);
+std::vector<unsigned char> renderRaytracedPixels(const MeshScene& scene,
+                                                 const RaytraceOptions& options);
 
 }  // namespace graftal

@@ -10,6 +10,7 @@
 #include "graftal/file_format.hpp"
 #include "graftal/kolam.hpp"
 #include "graftal/mesh.hpp"
+#include "graftal/mesh_scene.hpp"
 #include "graftal/pipeline.hpp"
 #include "graftal/render3d.hpp"
 #include "graftal/streamed_picture.hpp"
@@ -309,7 +310,7 @@ RenderResult render(const Model& model, const RenderRequest& request) {
             mo.minimumRadius = 0.5 * pixel;
         }
     }
-    Mesh mesh = buildMesh(scene, mo, &surfaces);
+    const MeshScene mesh = buildMeshScene(scene, mo, &surfaces);
     request.cancel.check();
     result.route = RenderRoute::Mesh;
     switch (*format) {
