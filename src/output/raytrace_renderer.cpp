@@ -606,4 +606,15 @@ void renderRaytraced(const Mesh& mesh, const RaytraceOptions& options, const fs:
     writeRgbaPng(RgbaImage::fromRgb(pixels, options.width, options.height), path);
 }
 
+// Instances are not kept yet: the ray tracer is given the flattened mesh.
+void renderRaytraced(const MeshScene& scene, const RaytraceOptions& options,
+                     const std::filesystem::path& path) {
+    renderRaytraced(scene.flattened(), options, path);
+}
+
+std::vector<unsigned char> renderRaytracedPixels(const MeshScene& scene,
+                                                 const RaytraceOptions& options) {
+    return renderRaytracedPixels(scene.flattened(), options);
+}
+
 }  // namespace graftal
