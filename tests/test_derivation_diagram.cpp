@@ -127,7 +127,9 @@ TEST(DerivationDiagram, EachSymbolHasOneColourAndSymbolsDiffer) {
     for (const auto& row : d.rows)
         for (const auto& c : row.cells) {
             auto [it, inserted] = colourOf.emplace(c.label, c.fill);
-            if (!inserted) EXPECT_EQ(it->second, c.fill) << c.label;
+            if (!inserted) {
+                EXPECT_EQ(it->second, c.fill) << c.label;
+            }
         }
     ASSERT_EQ(colourOf.size(), 4u);
     std::set<std::tuple<float, float, float>> distinct;

@@ -196,7 +196,9 @@ TEST(SubtreeSummaries, BacktrackingKochCurveDrawsAtMostFourStrokesPerPixel) {
         SubtreeSummaries sums(ls, n);
         ASSERT_TRUE(sums.available());
         StreamedMeasure m = measureSummarised(ls, sums, std::max(o.width, o.height));
-        if (n == 10) EXPECT_EQ(m.segments, 4u * 9765625u);  // 4·5^10
+        if (n == 10) {
+            EXPECT_EQ(m.segments, 4u * 9765625u);  // 4·5^10
+        }
         const ImageTransform transform = ImageTransform::fit(m.bounds, o);
         EXPECT_GT(summarisedStrokeCount(sums, transform.scale, 0.25), budget) << n;
         double dot = dotRadiusWithin(sums, transform.scale, 0.25, budget, 4.0);

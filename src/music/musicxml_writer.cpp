@@ -4,34 +4,12 @@
 
 #include "graftal/atomic_file.hpp"
 #include "graftal/music.hpp"
+#include "graftal/xml_text.hpp"
 #include "music/notation.hpp"
 
 namespace graftal {
 
 namespace {
-
-std::string escaped(const std::string& s) {
-    std::string out;
-    for (char c : s) {
-        switch (c) {
-            case '&':
-                out += "&amp;";
-                break;
-            case '<':
-                out += "&lt;";
-                break;
-            case '>':
-                out += "&gt;";
-                break;
-            case '"':
-                out += "&quot;";
-                break;
-            default:
-                out += c;
-        }
-    }
-    return out;
-}
 
 const char* typeName(int value) {
     switch (value) {
@@ -75,7 +53,7 @@ std::string musicXml(const Score& score) {
           "\"http://www.musicxml.org/dtds/partwise.dtd\">\n"
           "<score-partwise version=\"4.0\">\n";
     if (!score.title.empty())
-        os << "  <work><work-title>" << escaped(score.title) << "</work-title></work>\n";
+        os << "  <work><work-title>" << xmlEscaped(score.title) << "</work-title></work>\n";
     os << "  <identification><encoding><software>graftal</software></encoding>"
           "</identification>\n";
     os << "  <part-list>\n    <score-part id=\"P1\">\n      <part-name>Curve</part-name>\n"

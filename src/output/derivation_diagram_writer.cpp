@@ -13,6 +13,7 @@
 
 #include "graftal/derivation_diagram.hpp"
 #include "graftal/diagnostics.hpp"
+#include "graftal/xml_text.hpp"
 
 namespace graftal {
 
@@ -38,29 +39,6 @@ std::string number(double v) {
     s.imbue(std::locale::classic());
     s << std::lround(v * 100) / 100.0;
     return s.str();
-}
-
-std::string escaped(const std::string& text) {
-    std::string s;
-    for (char ch : text) {
-        switch (ch) {
-            case '<':
-                s += "&lt;";
-                break;
-            case '>':
-                s += "&gt;";
-                break;
-            case '&':
-                s += "&amp;";
-                break;
-            case '"':
-                s += "&quot;";
-                break;
-            default:
-                s += ch;
-        }
-    }
-    return s;
 }
 
 // ---- Cairo ----
@@ -251,12 +229,12 @@ void writeDerivationDiagramSvg(const DerivationDiagram& d, std::ostream& out) {
                 << "<text x=\"" << number(cx) << "\" y=\"" << number(labelBaseline(c, d.labelSize))
                 << "\" font-size=\"" << number(d.labelSize)
                 << "\" font-weight=\"bold\" text-anchor=\"middle\" fill=\"" << hexColor(kInk)
-                << "\">" << escaped(c.label) << "</text>\n";
+                << "\">" << xmlEscaped(c.label) << "</text>\n";
             if (!c.parameters.empty())
                 out << "<text x=\"" << number(cx) << "\" y=\"" << number(parameterBaseline(c))
                     << "\" font-size=\"" << number(d.parameterSize)
                     << "\" text-anchor=\"middle\" fill=\"" << hexColor(kInk) << "\">"
-                    << escaped(c.parameters) << "</text>\n";
+                    << xmlEscaped(c.parameters) << "</text>\n";
         }
     }
     out << "</g>\n</svg>\n";
@@ -281,6 +259,10 @@ void writeDerivationDiagram(const DerivationDiagram& d, const std::filesystem::p
             case ImageFormat::Pdf:
                 writePdfFile(d, temporary);
                 return;
+            case ImageFormat::Obj:
+            case ImageFormat::Ply:
+            case ImageFormat::Glb:
+                return;  // not pictures: imageFormatFor never gives them
         }
     });
 }
