@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <set>
 #include <string>
 #include <unordered_map>
@@ -411,6 +412,29 @@ TEST(MeshScene, BuildingIntoAUsedSceneForgetsTheOldOne) {
     EXPECT_EQ(reused.mesh.positions, fresh.mesh.positions);
     EXPECT_EQ(reused.mesh.indices, fresh.mesh.indices);
     EXPECT_EQ(reused.mesh.triangleColor, fresh.mesh.triangleColor);
+}
+
+}  // namespace
+
+namespace {
+
+TEST(MeshQuality, NamesAndNumbersGiveTubeSidesAndSurfaceDivisions) {
+    const std::optional<MeshResolution> medium = meshResolutionFor("medium");
+    ASSERT_TRUE(medium);
+    // Medium is what a request holds by default: today's pictures.
+    EXPECT_EQ(medium->tubeSides, RenderRequest{}.tubeSides);
+    EXPECT_EQ(medium->surfaceDivisions, RenderRequest{}.surfaceDivisions);
+    EXPECT_EQ(medium->tubeSides, MeshOptions{}.tubeSides);
+    ASSERT_TRUE(meshResolutionFor("low"));
+    EXPECT_LT(meshResolutionFor("low")->tubeSides, 8);
+    ASSERT_TRUE(meshResolutionFor("high"));
+    EXPECT_EQ(meshResolutionFor("high")->tubeSides, 16);
+    EXPECT_EQ(meshResolutionFor("high")->surfaceDivisions, 16);
+    ASSERT_TRUE(meshResolutionFor("12"));
+    EXPECT_EQ(meshResolutionFor("12")->tubeSides, 12);
+    EXPECT_EQ(meshResolutionFor("12")->surfaceDivisions, 12);
+    for (const char* bad : {"", "ultra", "2", "65", "8x", "-8", "1e1"})
+        EXPECT_FALSE(meshResolutionFor(bad)) << bad;
 }
 
 }  // namespace
