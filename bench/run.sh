@@ -17,7 +17,8 @@
 #   BENCH_STREAM_TIMEOUT=150  seconds the streamed Koch n=11 render gets
 #   BENCH_PEER=1              0: skip lindenmayer (and its npm install)
 #   BENCH_DOC=docs/performance.md   where the table goes ("" for nowhere)
-#   BENCH_ROWS="honda23 pcond22"    run only these rows (keys as in bench/report.py);
+#   BENCH_ROWS="honda23 pcond22"    run only these rows (keys as in bench/report.py, and
+#                             mesh3d: the 3D turtle and mesher, printed, not in the table);
 #                             the table then lists only them. Default: every row.
 #
 # Results (JSON per row, the table, the PNG) go to BUILD_DIR/bench/results/.
@@ -169,6 +170,20 @@ if wanted interp8; then
     say "bench: graftal koch-island.l n=8 with the 2D turtle"
     measure interp8.graftal "$RUNS" "$BUDGET" 600 \
         "$graftal" stats "$ls_dir/koch-island.l" -n 8 "${quiet[@]}"
+fi
+
+# The 3D turtle and the mesher in one process on a 1,048,575-segment tree (not in the table).
+if wanted mesh3d; then
+    if cmake --build "$build" --target graftal_mesh_timing >"$results/mesh_timing.log" 2>&1; then
+        say "bench: graftal 3D turtle + mesh, honda-monopodial-tree.l n=20 (in process)"
+        "$build/graftal_mesh_timing" "$root/examples/honda-monopodial-tree.l" 20 3 \
+            >"$results/mesh3d.json" && python3 -c 'import json,sys; m=json.load(open(sys.argv[1]))
+print("bench: 3D turtle %.3f s + mesh %.3f s for %d segments: %.1f M segments/s, peak %d MiB"
+      % (m["turtle_s"], m["mesh_s"], m["segments"], m["segments_per_s"] / 1e6, m["peak_mib"]))' \
+            "$results/mesh3d.json" >&2
+    else
+        say "bench: cannot build graftal_mesh_timing (see $results/mesh_timing.log)"
+    fi
 fi
 
 # ---- lindenmayer -------------------------------------------------------------------------

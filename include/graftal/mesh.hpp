@@ -50,12 +50,16 @@ struct MeshOptions {
     double widthScale = 1;     // cylinder diameter = segment width * widthScale
     int surfaceDivisions = 8;  // per patch side when tessellating bicubic patches
     bool cylinders = true;     // false: segments are left out (polygons and surfaces only)
-    // buildMeshScene: repeated organs (surfaces, discs, spheres) become prototypes placed
-    // by transforms instead of copies.
+    // buildMeshScene: repeated organs (placed surfaces, discs, spheres, and polygons of a
+    // shape drawn more than once, e.g. the same leaf at every node) become prototypes
+    // placed by transforms instead of copies. Organs scaled to nothing are left out.
     bool instancing = true;
-    // buildMeshScene: segments whose drawn radius is below this (model units) become
-    // CurveSegments instead of tubes; 0 keeps every segment a tube.
+    // buildMeshScene: segments whose drawn radius (width * widthScale / 2, at least
+    // minimumRadius) is below this (model units) become CurveSegments instead of tubes; 0
+    // keeps every segment a tube. buildMesh ignores it.
     double curveRadius = 0;
+    // Threads that build the tubes (0: one per core); the mesh is the same for any number.
+    unsigned threads = 0;
 };
 
 // Builds the mesh of a scene. Surfaces named in the scene are looked up in `surfaces`

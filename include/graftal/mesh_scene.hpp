@@ -39,6 +39,10 @@ struct CurveSegment {
     Vec3f a, b;
     float radiusA = 0, radiusB = 0;
     std::uint16_t color = 0;
+    // The curve this one continues along its axis (an index into MeshScene::curves, always
+    // an earlier one; kNoSegment at the start of a run): its `b` is this one's `a` and its
+    // radiusB this one's radiusA, so the joint is round and needs no cap of its own.
+    std::uint32_t previous = kNoSegment;
 };
 
 struct MeshScene {
@@ -69,5 +73,10 @@ std::ostream& operator<<(std::ostream& os, const MeshScene& s);
 // `surfaces`; an unknown name throws Error, as buildMesh does.
 MeshScene buildMeshScene(const Scene& scene, const MeshOptions& options = {},
                          const SurfaceLibrary* surfaces = nullptr);
+// The same into `out`, whose arrays keep their storage: frames of an animation, or a
+// program that meshes scene after scene, write into memory already mapped instead of
+// faulting in hundreds of megabytes each time.
+void buildMeshScene(const Scene& scene, const MeshOptions& options, const SurfaceLibrary* surfaces,
+                    MeshScene& out);
 
 }  // namespace graftal

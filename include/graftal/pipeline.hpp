@@ -10,6 +10,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "graftal/cancellation.hpp"
@@ -63,6 +64,7 @@ struct RenderRequest : DeriveRequest {
     std::optional<double> fieldOfView;
     int samplesPerPixel = 4;
     int tubeSides = 8;
+    int surfaceDivisions = 8;   // grid cells per side of a surface's patch (see MeshResolution)
     std::optional<int> spline;  // B-spline subdivisions (0: off); empty: the file's
     // The spline through every turtle position, f moves included (kolams); empty: the file's.
     std::optional<bool> splinePath;
@@ -83,6 +85,17 @@ struct RenderResult {
     RenderRoute route = RenderRoute::LineArt;
     std::vector<Diagnostic> notes;
 };
+
+// How finely a 3D scene is meshed: the sides of a stem's tube and the grid cells per side
+// of a surface's Bézier patch (RenderRequest::tubeSides, surfaceDivisions).
+struct MeshResolution {
+    int tubeSides = 8;
+    int surfaceDivisions = 8;
+};
+
+// What `--quality` names: low (5 sides, 4 divisions), medium (8 and 8, the default), high
+// (16 and 16), or a number N from 3 to 64 (N sides, N divisions). Empty for anything else.
+std::optional<MeshResolution> meshResolutionFor(std::string_view quality);
 
 // The steps a request asks for: its own, else the model's derivation length. Throws Error
 // for a negative count.

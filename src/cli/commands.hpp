@@ -38,10 +38,11 @@ struct RenderCommandOptions {
     std::optional<Vec3> viewpoint, target, up, light;
     std::optional<double> fieldOfView;
     int samplesPerPixel = 4;
-    int tubeSides = 8;
-    std::optional<int> spline;  // --spline N: B-spline subdivisions (0: off)
-    bool splinePath = false;    // --spline-path: every turtle position, f included
-    bool kolamDots = false;     // --dots: the kolam's dots
+    std::optional<int> tubeSides;  // --tube-sides, over what --quality gives
+    std::string quality;           // --quality low|medium|high|N
+    std::optional<int> spline;     // --spline N: B-spline subdivisions (0: off)
+    bool splinePath = false;       // --spline-path: every turtle position, f included
+    bool kolamDots = false;        // --dots: the kolam's dots
     bool sizeGiven = false, backgroundGiven = false;
     bool derivation = false;  // --derivation: draw the derivation steps, not the turtle's picture
 };

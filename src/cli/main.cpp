@@ -194,6 +194,9 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1, 1024));
     render->add_option("--tube-sides", out.tubeSides, "3D cylinder cross-section vertices")
         ->check(CLI::Range(3, 64));
+    render->add_option("--quality", out.quality,
+                       "3D mesh resolution: low, medium (default), high, or N (3-64) for N "
+                       "tube sides and N surface divisions");
     render
         ->add_option("--spline", out.spline,
                      "draw turtle paths as B-splines with N points per segment (0: straight)")

@@ -64,7 +64,16 @@ int runRender(const InputOptions& in, const RenderCommandOptions& out) {
     request.light = out.light;
     request.fieldOfView = out.fieldOfView;
     request.samplesPerPixel = out.samplesPerPixel;
-    request.tubeSides = out.tubeSides;
+    if (!out.quality.empty()) {
+        const std::optional<MeshResolution> resolution = meshResolutionFor(out.quality);
+        if (!resolution)
+            throw Error(SourceLocation{"graftal", 0, 0},
+                        "--quality '" + out.quality +
+                            "': expected low, medium, high or a number from 3 to 64");
+        request.tubeSides = resolution->tubeSides;
+        request.surfaceDivisions = resolution->surfaceDivisions;
+    }
+    if (out.tubeSides) request.tubeSides = *out.tubeSides;
     request.spline = out.spline;
     if (out.splinePath) request.splinePath = true;
     request.kolamDots = out.kolamDots;

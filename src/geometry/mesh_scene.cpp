@@ -1,5 +1,5 @@
 // Instanced scenes: the transforms' arithmetic, what a scene counts and bounds as drawn,
-// flattening for formats without instancing, and the builder.
+// flattening for formats without instancing (the builder is mesh_scene_builder.cpp).
 #include "graftal/mesh_scene.hpp"
 
 #include <cmath>
@@ -118,14 +118,6 @@ void MeshScene::print(std::ostream& os) const {
 std::ostream& operator<<(std::ostream& os, const MeshScene& s) {
     s.print(os);
     return os;
-}
-
-// Nothing is instanced yet: every organ is copied into the one mesh.
-MeshScene buildMeshScene(const Scene& scene, const MeshOptions& options,
-                         const SurfaceLibrary* surfaces) {
-    MeshScene out;
-    out.mesh = buildMesh(scene, options, surfaces);
-    return out;
 }
 
 }  // namespace graftal

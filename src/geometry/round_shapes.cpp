@@ -43,54 +43,110 @@ std::size_t roundShapeTriangles(const Scene& scene, int sides) {
     return scene.discs.size() * s + scene.spheres.size() * 2 * r * s;
 }
 
+namespace {
+
+// A disc as a fan about its centre: the centre, then `outline` (counter-clockwise seen
+// from the side `n` faces).
+void appendDiscFan(const Vec3& centre, const std::vector<Vec3>& outline, const Vec3f& n,
+                   std::uint16_t color, Mesh& mesh) {
+    const auto base = static_cast<std::uint32_t>(mesh.positions.size());
+    const auto sides = static_cast<std::uint32_t>(outline.size());
+    mesh.positions.push_back(toVec3f(centre));
+    mesh.normals.push_back(n);
+    for (const Vec3& p : outline) {
+        mesh.positions.push_back(toVec3f(p));
+        mesh.normals.push_back(n);
+    }
+    for (std::uint32_t i = 0; i < sides; ++i) {
+        mesh.indices.push_back(base);
+        mesh.indices.push_back(base + 1 + i);
+        mesh.indices.push_back(base + 1 + (i + 1) % sides);
+        mesh.triangleColor.push_back(color);
+    }
+}
+
+void appendBall(const Vec3& c, double radius, int sides, std::uint16_t color, Mesh& mesh) {
+    const int r = rings(sides);
+    const auto base = static_cast<std::uint32_t>(mesh.positions.size());
+    // Rings from the south pole (-z) to the north pole, each with sides + 1 vertices (the
+    // seam repeated) so that every quad has its own four corners.
+    for (int i = 0; i <= r; ++i) {
+        const double theta = kPi * i / r - kPi / 2;
+        for (int j = 0; j <= sides; ++j) {
+            const double phi = 2 * kPi * j / sides;
+            const Vec3 n{std::cos(theta) * std::cos(phi), std::cos(theta) * std::sin(phi),
+                         std::sin(theta)};
+            mesh.positions.push_back(toVec3f(c + n * radius));
+            mesh.normals.push_back(toVec3f(n));
+        }
+    }
+    const auto row = static_cast<std::uint32_t>(sides + 1);
+    for (int i = 0; i < r; ++i) {
+        for (int j = 0; j < sides; ++j) {
+            const std::uint32_t a = base + static_cast<std::uint32_t>(i) * row +
+                                    static_cast<std::uint32_t>(j),
+                                b = a + 1, c2 = a + row, d = c2 + 1;
+            // Counter-clockwise seen from outside: phi grows to the east, theta north.
+            for (std::uint32_t k : {a, b, d, a, d, c2}) mesh.indices.push_back(k);
+            mesh.triangleColor.push_back(color);
+            mesh.triangleColor.push_back(color);
+        }
+    }
+}
+
+}  // namespace
+
 void appendRoundShapes(const Scene& scene, int sides, Mesh& mesh) {
     for (const Disc& d : scene.discs) {
         if (!isFinite(d.centre) || !std::isfinite(d.radius)) continue;
-        const Vec3f n = toVec3f(normalizedOr(d.normal, {0, 0, 1}));
-        const auto base = static_cast<std::uint32_t>(mesh.positions.size());
-        mesh.positions.push_back(toVec3f(d.centre));
-        mesh.normals.push_back(n);
-        for (const Vec3& p : discOutline(d, sides)) {
-            mesh.positions.push_back(toVec3f(p));
-            mesh.normals.push_back(n);
-        }
-        for (int i = 0; i < sides; ++i) {
-            mesh.indices.push_back(base);
-            mesh.indices.push_back(base + 1 + static_cast<std::uint32_t>(i));
-            mesh.indices.push_back(base + 1 + static_cast<std::uint32_t>((i + 1) % sides));
-            mesh.triangleColor.push_back(d.color);
-        }
+        appendDiscFan(d.centre, discOutline(d, sides), toVec3f(normalizedOr(d.normal, {0, 0, 1})),
+                      d.color, mesh);
     }
-    const int r = rings(sides);
     for (const Sphere& s : scene.spheres) {
         if (!isFinite(s.centre) || !std::isfinite(s.radius)) continue;
-        const auto base = static_cast<std::uint32_t>(mesh.positions.size());
-        const Vec3 c = s.centre;
-        // Rings from the south pole (-z) to the north pole, each with sides + 1 vertices
-        // (the seam repeated) so that every quad has its own four corners.
-        for (int i = 0; i <= r; ++i) {
-            const double theta = kPi * i / r - kPi / 2;
-            for (int j = 0; j <= sides; ++j) {
-                const double phi = 2 * kPi * j / sides;
-                const Vec3 n{std::cos(theta) * std::cos(phi), std::cos(theta) * std::sin(phi),
-                             std::sin(theta)};
-                mesh.positions.push_back(toVec3f(c + n * s.radius));
-                mesh.normals.push_back(toVec3f(n));
-            }
-        }
-        const auto row = static_cast<std::uint32_t>(sides + 1);
-        for (int i = 0; i < r; ++i) {
-            for (int j = 0; j < sides; ++j) {
-                const std::uint32_t a = base + static_cast<std::uint32_t>(i) * row +
-                                        static_cast<std::uint32_t>(j),
-                                    b = a + 1, c2 = a + row, d = c2 + 1;
-                // Counter-clockwise seen from outside: phi grows to the east, theta north.
-                for (std::uint32_t k : {a, b, d, a, d, c2}) mesh.indices.push_back(k);
-                mesh.triangleColor.push_back(s.color);
-                mesh.triangleColor.push_back(s.color);
-            }
-        }
+        appendBall(s.centre, s.radius, sides, s.color, mesh);
     }
+}
+
+Mesh unitDisc(int sides, std::uint16_t color) {
+    Mesh mesh;
+    std::vector<Vec3> outline;
+    for (int i = 0; i < sides; ++i) {
+        const double a = 2 * kPi * i / sides;
+        outline.push_back({std::cos(a), std::sin(a), 0});
+    }
+    appendDiscFan({0, 0, 0}, outline, {0, 0, 1}, color, mesh);
+    return mesh;
+}
+
+Mesh unitSphere(int sides, std::uint16_t color) {
+    Mesh mesh;
+    appendBall({0, 0, 0}, 1, sides, color, mesh);
+    return mesh;
+}
+
+std::optional<Affine3f> discPlacement(const Disc& d) {
+    if (!isFinite(d.centre) || !std::isfinite(d.radius) || d.radius == 0) return std::nullopt;
+    // The frame discOutline() draws in.
+    const Vec3 n = normalizedOr(d.normal, {0, 0, 1});
+    const Vec3 u = anyPerpendicular(n), v = cross(n, u);
+    Affine3f a;
+    a.columns[0] = toVec3f(u * d.radius);
+    a.columns[1] = toVec3f(v * d.radius);
+    a.columns[2] = toVec3f(n * d.radius);
+    a.columns[3] = toVec3f(d.centre);
+    return a;
+}
+
+std::optional<Affine3f> spherePlacement(const Sphere& s) {
+    if (!isFinite(s.centre) || !std::isfinite(s.radius) || s.radius == 0) return std::nullopt;
+    Affine3f a;
+    const auto r = static_cast<float>(s.radius);
+    a.columns[0] = {r, 0, 0};
+    a.columns[1] = {0, r, 0};
+    a.columns[2] = {0, 0, r};
+    a.columns[3] = toVec3f(s.centre);
+    return a;
 }
 
 }  // namespace meshing

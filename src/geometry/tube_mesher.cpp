@@ -4,8 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
+#include "core/parallel.hpp"
+#include "graftal/diagnostics.hpp"
 #include "graftal/vec3.hpp"
 
 namespace graftal {
@@ -50,25 +53,42 @@ Vec3 transport(const Vec3& u, const Vec3& from, const Vec3& to) {
     return perpendicularPart(rotated, to);
 }
 
-// Appends to a mesh whose storage has been reserved.
+// Writes one axis at the places counted for its segments.
 class Emitter {
   public:
-    explicit Emitter(Mesh& mesh) : mesh_(mesh) {}
+    Emitter(Vec3f* positions, Vec3f* normals, std::uint32_t* indices, std::uint16_t* colors,
+            std::uint32_t vertexBase)
+        : positions_(positions),
+          normals_(normals),
+          indices_(indices),
+          colors_(colors),
+          vertexBase_(vertexBase) {}
 
+    // Moves the cursors to a segment's own vertices and triangles.
+    void seek(std::uint64_t vertex, std::uint64_t triangle) {
+        vertex_ = vertex;
+        triangle_ = triangle;
+    }
     std::uint32_t vertex(const Vec3& p, const Vec3& n) {
-        mesh_.positions.push_back(toVec3f(p));
-        mesh_.normals.push_back(toVec3f(n));
-        return static_cast<std::uint32_t>(mesh_.positions.size() - 1);
+        positions_[vertex_] = toVec3f(p);
+        normals_[vertex_] = toVec3f(n);
+        return vertexBase_ + static_cast<std::uint32_t>(vertex_++);
     }
     void triangle(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint16_t color) {
-        mesh_.indices.push_back(a);
-        mesh_.indices.push_back(b);
-        mesh_.indices.push_back(c);
-        mesh_.triangleColor.push_back(color);
+        std::uint32_t* t = indices_ + 3 * triangle_;
+        t[0] = a;
+        t[1] = b;
+        t[2] = c;
+        colors_[triangle_++] = color;
     }
 
   private:
-    Mesh& mesh_;
+    Vec3f* positions_;
+    Vec3f* normals_;
+    std::uint32_t* indices_;
+    std::uint16_t* colors_;
+    std::uint32_t vertexBase_;
+    std::uint64_t vertex_ = 0, triangle_ = 0;
 };
 
 }  // namespace
@@ -76,6 +96,7 @@ class Emitter {
 TubeMesher::TubeMesher(const Scene& scene, const MeshOptions& options)
     : scene_(scene), options_(options) {
     if (!options_.cylinders || scene_.segments.empty()) return;
+    if (!(options_.curveRadius > 0)) options_.curveRadius = 0;
     const int n = options_.tubeSides;
     cos_.resize(n);
     sin_.resize(n);
@@ -127,16 +148,22 @@ void TubeMesher::plan() {
         const Segment& segment = segments[s];
         // Only earlier segments can be continued: that rules out cycles, and the turtle
         // emits an axis in order. Unusable segments (zero length) are looked through.
+        // A curve is not looked through: the tubes on either side of it stay apart.
         const std::uint32_t p = segment.previous;
-        if (p < s) previous_[s] = usable(p) ? p : previous_[p];
+        if (p < s) previous_[s] = usable(p) || curve(p) ? p : previous_[p];
 
         const Direction d = directionOf(segment);
         const double rStart = startRadius(s), rEnd = radius(segment.width);
         if (d.length == 0 || (rStart == 0 && rEnd == 0)) continue;
+        if (rEnd < options_.curveRadius) {
+            flags_[s] = kCurve;
+            ++curveCount_;
+            continue;
+        }
         flags_[s] = kUsable;
 
         const std::uint32_t before = previous_[s];
-        if (before == kNoSegment || !canJoin(before, s)) continue;
+        if (before == kNoSegment || !usable(before) || !canJoin(before, s)) continue;
         if (const std::uint32_t rival = next_[before]; rival != kNoSegment) {
             // Two segments continue the same one (a branch marked as a continuation): the
             // straighter one carries the tube on, the other starts a tube of its own.
@@ -149,7 +176,11 @@ void TubeMesher::plan() {
         flags_[s] |= kJoinedStart;
     }
 
+    firstVertex_.assign(count, 0);
+    firstTriangle_.assign(count, 0);
     for (std::uint32_t s = 0; s < count; ++s) {
+        firstVertex_[s] = vertexCount_;
+        firstTriangle_[s] = triangleCount_;
         if (!usable(s)) continue;
         const bool apexStart = startRadius(s) == 0;
         const bool apexEnd = radius(segments[s].width) == 0;
@@ -167,17 +198,70 @@ void TubeMesher::plan() {
     }
 }
 
-void TubeMesher::append(Mesh& mesh) const {
-    for (std::uint32_t s = 0; s < flags_.size(); ++s)
-        if (usable(s) && !joinedStart(s)) appendAxis(s, mesh);
+struct TubeMesher::Output {
+    Vec3f* positions;
+    Vec3f* normals;
+    std::uint32_t* indices;
+    std::uint16_t* colors;
+    std::uint32_t vertexBase;
+};
+
+void TubeMesher::append(Mesh& mesh, unsigned threads) const {
+    if (vertexCount_ == 0) return;
+    if (mesh.positions.size() + vertexCount_ > std::numeric_limits<std::uint32_t>::max())
+        throw Error(SourceLocation{}, "the mesh would have more than 4294967295 vertices");
+    const std::size_t v0 = mesh.positions.size(), t0 = mesh.triangleColor.size();
+    mesh.positions.resize(v0 + vertexCount_);
+    mesh.normals.resize(v0 + vertexCount_);
+    mesh.indices.resize(3 * (t0 + triangleCount_));
+    mesh.triangleColor.resize(t0 + triangleCount_);
+    const Output out{mesh.positions.data() + v0, mesh.normals.data() + v0,
+                     mesh.indices.data() + 3 * t0, mesh.triangleColor.data() + t0,
+                     static_cast<std::uint32_t>(v0)};
+    // Small scenes are not worth a thread.
+    constexpr std::size_t kSegmentsPerThread = 4096;
+    const std::size_t n = flags_.size();
+    const std::size_t chunks =
+        std::min<std::size_t>(threads == 0 ? defaultThreadCount() : threads,
+                              (n + kSegmentsPerThread - 1) / kSegmentsPerThread);
+    forEachChunk(n, chunks, [&](std::size_t, std::size_t begin, std::size_t end) {
+        for (std::size_t s = begin; s < end; ++s)
+            if (usable(static_cast<std::uint32_t>(s)) &&
+                !joinedStart(static_cast<std::uint32_t>(s)))
+                writeAxis(static_cast<std::uint32_t>(s), out);
+    });
+}
+
+void TubeMesher::appendCurves(std::vector<CurveSegment>& curves) const {
+    if (curveCount_ == 0) return;
+    curves.reserve(curves.size() + curveCount_);
+    // The index each curve got, for the curves that continue it.
+    std::vector<std::uint32_t> index(flags_.size(), kNoSegment);
+    const std::vector<Segment>& segments = scene_.segments;
+    for (std::uint32_t s = 0; s < flags_.size(); ++s) {
+        if (!curve(s)) continue;
+        const Segment& segment = segments[s];
+        CurveSegment c;
+        c.a = toVec3f(segment.a);
+        c.b = toVec3f(segment.b);
+        c.radiusA = static_cast<float>(startRadius(s));
+        c.radiusB = static_cast<float>(radius(segment.width));
+        c.color = segment.color;
+        // Continuing a curve that ends where this one starts: one joint, shared.
+        const std::uint32_t p = previous_[s];
+        if (p != kNoSegment && curve(p) && curves[index[p]].b == c.a) c.previous = index[p];
+        index[s] = static_cast<std::uint32_t>(curves.size());
+        curves.push_back(c);
+    }
 }
 
 // One axis, from its first segment along next_. Rings are emitted once: each segment adds
 // its end ring, which the next segment takes as its start ring.
-void TubeMesher::appendAxis(std::uint32_t first, Mesh& mesh) const {
+void TubeMesher::writeAxis(std::uint32_t first, const Output& to) const {
     const std::vector<Segment>& segments = scene_.segments;
     const std::uint32_t n = static_cast<std::uint32_t>(cos_.size());
-    Emitter out(mesh);
+    Emitter out(to.positions, to.normals, to.indices, to.colors, to.vertexBase);
+    out.seek(firstVertex_[first], firstTriangle_[first]);
 
     // A ring of radius r around `centre` in the plane perpendicular to the unit vector d,
     // leaned by the mitre towards `dn` when that is given. Normals follow the taper.
@@ -186,19 +270,26 @@ void TubeMesher::appendAxis(std::uint32_t first, Mesh& mesh) const {
         const Vec3 v = cross(d, u);
         const Vec3 vn = dn ? cross(*dn, un) : Vec3{};
         const double lean = dn ? 1 / (1 + dot(d, *dn)) : 0;
-        const std::uint32_t start = static_cast<std::uint32_t>(mesh.positions.size());
+        // e is a unit vector across d, so e - slope * d has length sqrt(1 + slope^2)
+        // around the whole ring.
+        const double k = 1 / std::sqrt(1 + slope * slope);
+        const double kn = 1 / std::sqrt(1 + slopeN * slopeN);
+        std::uint32_t start = 0;
         for (std::uint32_t i = 0; i < n; ++i) {
             const Vec3 e = cos_[i] * u + sin_[i] * v;
-            Vec3 normal = normalizedOr(e - slope * d, e);
+            Vec3 normal = k * (e - slope * d);
             Vec3 p = centre + r * e;
             if (dn) {
                 // Sliding along d onto the plane bisecting the joint puts the vertex on both
                 // cylinders at once; the frames agree because `un` is u transported.
                 p = p - (r * dot(e, *dn) * lean) * d;
                 const Vec3 en = cos_[i] * un + sin_[i] * vn;
-                normal = normalizedOr(normal + normalizedOr(en - slopeN * (*dn), en), e);
+                const Vec3 sum = normal + kn * (en - slopeN * (*dn));
+                const double l2 = dot(sum, sum);
+                normal = l2 > 1e-24 ? (1 / std::sqrt(l2)) * sum : e;
             }
-            out.vertex(p, normal);
+            const std::uint32_t index = out.vertex(p, normal);
+            if (i == 0) start = index;
         }
         return start;
     };
@@ -264,6 +355,7 @@ void TubeMesher::appendAxis(std::uint32_t first, Mesh& mesh) const {
             return;
         }
         s = following;
+        out.seek(firstVertex_[s], firstTriangle_[s]);
         segment = &segments[s];
         b = Vec3(segment->b);
         d = dNext;

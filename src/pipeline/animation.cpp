@@ -375,6 +375,7 @@ AnimationResult animate(const Model& model, const AnimationRequest& request,
     SurfaceLibrary surfaces = surfacesFor(model.view, sequence.folder());
     MeshOptions mo;
     mo.tubeSides = request.tubeSides;
+    mo.surfaceDivisions = request.surfaceDivisions;
     mo.cylinders = model.view.lineStyle == LineStyle::Cylinders;
     if (!sceneBounds.empty()) {
         // A stem thinner than a pixel would vanish between the rays (as in render()).

@@ -169,6 +169,8 @@ void warnLineArtIgnores(RenderResult& result, const RenderRequest& request, cons
                         bool scene3D) {
     std::vector<std::string> fields = cameraSettingsGiven(request);
     if (request.tubeSides != RenderRequest{}.tubeSides) fields.push_back("tubeSides");
+    if (request.surfaceDivisions != RenderRequest{}.surfaceDivisions)
+        fields.push_back("surfaceDivisions");
     warnIgnored(result, request, model,
                 scene3D ? "the 3D scene is drawn as 2D line art; its 3D settings are ignored"
                         : "the scene is 2D and drawn as line art; 3D settings are ignored",
@@ -299,6 +301,7 @@ RenderResult render(const Model& model, const RenderRequest& request) {
     SurfaceLibrary surfaces = surfacesFor(model.view, folder);
     MeshOptions mo;
     mo.tubeSides = request.tubeSides;
+    mo.surfaceDivisions = request.surfaceDivisions;
     mo.cylinders = model.view.lineStyle == LineStyle::Cylinders;
     if (picture) {
         // In a picture, a stem thinner than a pixel would vanish between the rays: draw it at

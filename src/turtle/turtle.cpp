@@ -1,6 +1,7 @@
 // Turtle interpretation of a whole module string (see turtle_machine.hpp).
 #include "graftal/turtle.hpp"
 
+#include "core/huge_pages.hpp"
 #include "turtle_machine.hpp"
 
 namespace graftal {
@@ -27,6 +28,7 @@ Scene interpret(const Model& model, const ModuleString& modules) {
 Scene interpret(const LSystem& lsystem, const ViewSettings& view, const ModuleString& modules) {
     Scene scene;
     scene.segments.reserve(segmentsAtMost(lsystem, modules));
+    adviseHugePages(scene.segments);
     turtle::SceneSink sink(scene);
     turtle::TurtleMachine<turtle::SceneSink> machine(lsystem, view, sink);
     machine.run(modules);

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <functional>
 #include <span>
@@ -246,10 +247,26 @@ class TurtleMachine {
         if (args.empty()) {
             rotatePair(a, b, deltaCos_, sign * deltaSin_);
         } else {
-            double r = args[0] * kPi / 180.0;
-            rotatePair(a, b, std::cos(r), sign * std::sin(r));
+            const AngleMemo& m = cosSin(args[0]);
+            rotatePair(a, b, m.cos, sign * m.sin);
         }
         if (++rotations_ % kOrthonormaliseEvery == 0) orthonormalise();
+    }
+
+    // A plant turns by a few angles over and over (a divergence angle, a branching
+    // angle): their cosines and sines are remembered, the same values std::cos and
+    // std::sin give, so the turtle's path does not change.
+    struct AngleMemo {
+        double degrees = 0, cos = 1, sin = 0;
+    };
+    const AngleMemo& cosSin(double degrees) {
+        for (const AngleMemo& m : angles_)
+            if (std::bit_cast<std::uint64_t>(m.degrees) == std::bit_cast<std::uint64_t>(degrees))
+                return m;
+        const double r = degrees * kPi / 180.0;
+        AngleMemo& m = angles_[nextAngle_++ % angles_.size()];
+        m = {degrees, std::cos(r), std::sin(r)};
+        return m;
     }
 
     // Rounding drifts the frame after very many rotations; Gram-Schmidt puts it back.
@@ -586,6 +603,8 @@ class TurtleMachine {
     bool is3D_ = false;
     bool atPending_ = false;  // the last module was an @
     std::uint64_t rotations_ = 0;
+    std::array<AngleMemo, 4> angles_{};
+    std::size_t nextAngle_ = 0;
     TurtleState state_;
     std::vector<TurtleState> stack_;
     std::vector<double> scratch_;  // parameters of a string of floats, as doubles
