@@ -63,6 +63,7 @@ struct RenderRequest : DeriveRequest {
     std::optional<double> fieldOfView;
     int samplesPerPixel = 4;
     int tubeSides = 8;
+    bool ground = false;        // ray-traced pictures: a floor under the plant, with its shadow
     std::optional<int> spline;  // B-spline subdivisions (0: off); empty: the file's
     // The spline through every turtle position, f moves included (kolams); empty: the file's.
     std::optional<bool> splinePath;

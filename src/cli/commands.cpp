@@ -82,6 +82,7 @@ std::string settingAsFlag(const std::string& field) {
                                                              {"fieldOfView", "--fov"},
                                                              {"samplesPerPixel", "--spp"},
                                                              {"tubeSides", "--tube-sides"},
+                                                             {"ground", "--ground"},
                                                              {"lineWidth", "--line-width"},
                                                              {"lineColor", "--color"},
                                                              {"margin", "--margin"},

@@ -39,6 +39,7 @@ struct RenderCommandOptions {
     std::optional<double> fieldOfView;
     int samplesPerPixel = 4;
     int tubeSides = 8;
+    bool ground = false;        // --ground: a floor under a ray-traced plant
     std::optional<int> spline;  // --spline N: B-spline subdivisions (0: off)
     bool splinePath = false;    // --spline-path: every turtle position, f included
     bool kolamDots = false;     // --dots: the kolam's dots

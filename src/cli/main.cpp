@@ -194,6 +194,7 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1, 1024));
     render->add_option("--tube-sides", out.tubeSides, "3D cylinder cross-section vertices")
         ->check(CLI::Range(3, 64));
+    render->add_flag("--ground", out.ground, "3D: a floor under the plant, with its shadow");
     render
         ->add_option("--spline", out.spline,
                      "draw turtle paths as B-splines with N points per segment (0: straight)")

@@ -65,6 +65,7 @@ int runRender(const InputOptions& in, const RenderCommandOptions& out) {
     request.fieldOfView = out.fieldOfView;
     request.samplesPerPixel = out.samplesPerPixel;
     request.tubeSides = out.tubeSides;
+    request.ground = out.ground;
     request.spline = out.spline;
     if (out.splinePath) request.splinePath = true;
     request.kolamDots = out.kolamDots;
