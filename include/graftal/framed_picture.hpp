@@ -2,6 +2,8 @@
 // a sequence of frames (an animation) keeps one camera while the plant grows inside it.
 #pragma once
 
+#include <span>
+
 #include "graftal/animation_file.hpp"
 #include "graftal/output.hpp"
 #include "graftal/render3d.hpp"
@@ -14,8 +16,15 @@ namespace graftal {
 // change from frame to frame. Throws Error for a size Cairo cannot hold.
 RgbaImage drawLineArt(const Scene& scene, const RenderOptions& options, const Bounds& frame);
 
-// The camera with its unset viewpoint and target chosen as the ray tracer would choose
-// them for a mesh whose bounds are `frame`.
+// The camera with its unset viewpoint and target chosen as the ray tracer chooses them:
+// seen from the front and slightly above, the scenes' projected outline (every vertex and
+// curve as drawn) spans 94% of the picture's width or height, whichever is tighter, and
+// is centred in the other; a given target stays in the picture's centre. Several scenes
+// (the frames of an animation) are framed together.
+Camera framedCamera(const Camera& camera, const MeshScene& scene, int width, int height);
+Camera framedCamera(const Camera& camera, std::span<const MeshScene* const> scenes, int width,
+                    int height);
+// The same for a box (framing its eight corners), when only bounds are known.
 Camera framedCamera(const Camera& camera, const Bounds& frame, int width, int height);
 
 }  // namespace graftal

@@ -65,6 +65,7 @@ struct RenderRequest : DeriveRequest {
     int samplesPerPixel = 4;
     int tubeSides = 8;
     int surfaceDivisions = 8;   // grid cells per side of a surface's patch (see MeshResolution)
+    bool ground = false;        // ray-traced pictures: a floor under the plant, with its shadow
     std::optional<int> spline;  // B-spline subdivisions (0: off); empty: the file's
     // The spline through every turtle position, f moves included (kolams); empty: the file's.
     std::optional<bool> splinePath;

@@ -1,4 +1,6 @@
-// Pictures of 3D scenes: a headless ray tracer (Embree) with a sun, shadows and sky light.
+// Pictures of 3D scenes: a headless ray tracer (Embree) with a soft sun, shadows, sky light
+// with ambient occlusion and an optional ground. Every pixel is a pure function of the
+// scene, the options and its position: the picture is the same for any thread count.
 #pragma once
 
 #include <filesystem>
@@ -11,8 +13,8 @@
 namespace graftal {
 
 struct Camera {
-    // Unset fields are chosen to frame the mesh: the camera looks at the centre of the
-    // bounds from the front (+z, slightly raised), far enough that everything is in view.
+    // Unset fields are chosen to frame the scene (framedCamera): the camera looks at it from
+    // the front (+z, slightly raised), so that its outline fills the picture.
     std::optional<Vec3> viewpoint;
     std::optional<Vec3> target;  // cpfg's "view reference point"
     Vec3 up{0, 1, 0};
@@ -23,16 +25,27 @@ struct Camera {
 struct Lighting {
     Vec3 sunDirection{0.4, 1.0, 0.6};  // towards the sun (need not be unit length)
     double sunIntensity = 0.9;
-    double skyIntensity = 0.35;  // ambient light from the sky hemisphere
-    bool shadows = true;
+    // The sun's apparent size: shadows are soft over this angle (0: a point, sharp shadows).
+    double sunDiameterDegrees = 5;
+    double skyIntensity = 0.35;  // light from the sky hemisphere (and the ground below it)
+    // Ambient occlusion: rays per hit that look for the sky, so that leaves shade each other
+    // and the inside of a crown is darker than its outside. 0: the sky is never hidden.
+    int skyRays = 2;
+    bool shadows = true;  // of the sun
 };
 
 struct RaytraceOptions {
     int width = 800, height = 800;
-    int samplesPerPixel = 4;  // antialiasing (stratified)
+    int samplesPerPixel = 4;  // antialiasing (stratified), soft shadows and sky share them
     Rgb background{1, 1, 1};
     Camera camera;
     Lighting lighting;
+    // A floor under the scene (at its lowest point) that takes its shadow and fades into
+    // the background away from it.
+    bool ground = false;
+    // Curves (thin stems) are drawn at least this many pixels wide, so that none vanishes
+    // between the rays.
+    double minimumCurvePixels = 1;
     unsigned threads = 0;  // 0: all cores
 };
 
@@ -43,8 +56,8 @@ void renderRaytraced(const Mesh& mesh, const RaytraceOptions& options,
 // The same image into memory, RGB8 rows top to bottom (for tests and other front ends).
 std::vector<unsigned char> renderRaytracedPixels(const Mesh& mesh, const RaytraceOptions& options);
 
-// The same for an instanced scene: prototypes are placed as instances, curves drawn as
-// round curves.
+// The same for an instanced scene: each prototype is stored once and placed by Embree
+// instances, curves are drawn as round curves (at least minimumCurvePixels wide).
 void renderRaytraced(const MeshScene& scene, const RaytraceOptions& options,
                      const std::filesystem::path& path);
 std::vector<unsigned char> renderRaytracedPixels(const MeshScene& scene,

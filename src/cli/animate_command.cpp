@@ -54,6 +54,7 @@ AnimateCommand::AnimateCommand(CLI::App& app,
         ->check(CLI::Range(1, 1024));
     c.add_option("--tube-sides", request_.tubeSides, "3D cylinder cross-section vertices")
         ->check(CLI::Range(3, 64));
+    c.add_flag("--ground", request_.ground, "3D: a floor under the plant, with its shadow");
     c.add_option("--spline", request_.spline,
                  "draw turtle paths as B-splines with N points per segment (0: straight)")
         ->check(CLI::Range(0, 64));

@@ -83,6 +83,7 @@ std::string settingAsFlag(const std::string& field) {
                                                              {"samplesPerPixel", "--spp"},
                                                              {"tubeSides", "--tube-sides"},
                                                              {"surfaceDivisions", "--quality"},
+                                                             {"ground", "--ground"},
                                                              {"lineWidth", "--line-width"},
                                                              {"lineColor", "--color"},
                                                              {"margin", "--margin"},

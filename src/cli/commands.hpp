@@ -43,6 +43,7 @@ struct RenderCommandOptions {
     std::optional<int> spline;     // --spline N: B-spline subdivisions (0: off)
     bool splinePath = false;       // --spline-path: every turtle position, f included
     bool kolamDots = false;        // --dots: the kolam's dots
+    bool ground = false;           // --ground: a floor under a ray-traced plant
     bool sizeGiven = false, backgroundGiven = false;
     bool derivation = false;  // --derivation: draw the derivation steps, not the turtle's picture
 };

@@ -197,6 +197,7 @@ int main(int argc, char** argv) {
     render->add_option("--quality", out.quality,
                        "3D mesh resolution: low, medium (default), high, or N (3-64) for N "
                        "tube sides and N surface divisions");
+    render->add_flag("--ground", out.ground, "3D: a floor under the plant, with its shadow");
     render
         ->add_option("--spline", out.spline,
                      "draw turtle paths as B-splines with N points per segment (0: straight)")

@@ -74,6 +74,7 @@ int runRender(const InputOptions& in, const RenderCommandOptions& out) {
         request.surfaceDivisions = resolution->surfaceDivisions;
     }
     if (out.tubeSides) request.tubeSides = *out.tubeSides;
+    request.ground = out.ground;
     request.spline = out.spline;
     if (out.splinePath) request.splinePath = true;
     request.kolamDots = out.kolamDots;

@@ -377,27 +377,33 @@ AnimationResult animate(const Model& model, const AnimationRequest& request,
     mo.tubeSides = request.tubeSides;
     mo.surfaceDivisions = request.surfaceDivisions;
     mo.cylinders = model.view.lineStyle == LineStyle::Cylinders;
-    if (!sceneBounds.empty()) {
-        // A stem thinner than a pixel would vanish between the rays (as in render()).
-        const Vec3 e = sceneBounds.max - sceneBounds.min;
-        const double extent = std::max({e.x, e.y, e.z});
-        mo.minimumRadius =
-            0.5 * extent / (0.6 * std::min(request.picture.width, request.picture.height));
-    }
-    std::vector<std::optional<Mesh>> meshes(scenes.size());
+    // Thin stems as in render(), for the pixel size of the camera framed on every frame.
+    setPictureRadii(mo, sceneBounds, options);
+    std::vector<std::optional<MeshScene>> meshes(scenes.size());
+    std::vector<const MeshScene*> shown;
     Bounds all;
     for (std::size_t k = 0; k < scenes.size(); ++k) {
         if (!scenes[k]) continue;
         request.cancel.check();
         Scene& scene = *scenes[k];
         if (model.view.colorMap.empty()) scene.palette = defaultPalette3D();
-        meshes[k] = buildMesh(scene, mo, &surfaces);
+        meshes[k] = buildMeshScene(scene, mo, &surfaces);
         scene = Scene{};
         all.extend(meshes[k]->bounds());
+        shown.push_back(&*meshes[k]);
     }
     result.frame = all;
-    const Camera camera =
-        framedCamera(options.camera, all, request.picture.width, request.picture.height);
+    Camera camera;
+    if (request.turntableDegrees != 0 && !all.empty()) {
+        // The camera turns about its target: the box the turning plant sweeps is framed
+        // around the plant's centre, so that every turn stays in the picture.
+        Camera turning = options.camera;
+        if (!turning.target) turning.target = (all.min + all.max) * 0.5;
+        camera = framedCamera(turning, turntableBounds(all, *turning.target), request.picture.width,
+                              request.picture.height);
+    } else {
+        camera = framedCamera(options.camera, shown, request.picture.width, request.picture.height);
+    }
     for (std::size_t index = 0; index < plan.size(); ++index) {
         request.cancel.check();
         const FramePlan& f = plan[index];

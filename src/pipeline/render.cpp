@@ -8,6 +8,7 @@
 #include "graftal/color_map.hpp"
 #include "graftal/derivation_diagram.hpp"
 #include "graftal/file_format.hpp"
+#include "graftal/framed_picture.hpp"
 #include "graftal/kolam.hpp"
 #include "graftal/mesh.hpp"
 #include "graftal/mesh_scene.hpp"
@@ -87,7 +88,25 @@ RaytraceOptions raytraceOptions(const ViewSettings& v, const RenderRequest& requ
     r.camera.orthographic = v.parallelProjection;
     if (auto light = request.light ? request.light : v.lightDirection)
         r.lighting.sunDirection = *light;
+    r.ground = request.ground;
     return r;
+}
+
+void setPictureRadii(MeshOptions& mo, const Bounds& bounds, const RaytraceOptions& options) {
+    if (bounds.empty()) return;
+    // The size of a pixel where the camera looks, as it frames the scene's box (the scene
+    // as drawn fills the picture a little more, so this errs towards thicker).
+    const Camera camera = framedCamera(options.camera, bounds, options.width, options.height);
+    const double distance = length(*camera.target - *camera.viewpoint);
+    const double pixel =
+        2 * distance * std::tan(camera.fieldOfView * 3.14159265358979323846 / 360) / options.height;
+    if (!(pixel > 0) || !std::isfinite(pixel)) return;
+    // A stem thinner than a pixel would vanish between the rays: it is drawn at least half a
+    // pixel thick, as line art would. A stem under about two pixels across becomes a round
+    // curve: its tube's sides could not be told apart there, and a curve costs a fraction of
+    // a tube's memory and time. 3D files keep the true widths and tubes.
+    mo.minimumRadius = 0.5 * pixel;
+    mo.curveRadius = pixel;
 }
 
 // Line art's options: pfg's scale factor makes the picture fill that share of the frame
@@ -140,6 +159,7 @@ std::vector<std::string> cameraSettingsGiven(const RenderRequest& request) {
     if (request.light) given.push_back("light");
     if (request.fieldOfView) given.push_back("fieldOfView");
     if (request.samplesPerPixel != defaults.samplesPerPixel) given.push_back("samplesPerPixel");
+    if (request.ground) given.push_back("ground");
     return given;
 }
 
@@ -303,17 +323,9 @@ RenderResult render(const Model& model, const RenderRequest& request) {
     mo.tubeSides = request.tubeSides;
     mo.surfaceDivisions = request.surfaceDivisions;
     mo.cylinders = model.view.lineStyle == LineStyle::Cylinders;
-    if (picture) {
-        // In a picture, a stem thinner than a pixel would vanish between the rays: draw it at
-        // least about a pixel wide, as line art would. 3D files keep the true widths.
-        Bounds b = scene.bounds();
-        if (!b.empty()) {
-            double extent = std::max({b.max.x - b.min.x, b.max.y - b.min.y, b.max.z - b.min.z});
-            double pixel = extent / (0.6 * std::min(request.picture.width, request.picture.height));
-            mo.minimumRadius = 0.5 * pixel;
-        }
-    }
+    if (picture) setPictureRadii(mo, scene.bounds(), raytraceOptions(model.view, request));
     const MeshScene mesh = buildMeshScene(scene, mo, &surfaces);
+    scene = Scene{};  // the meshes hold everything now: its memory goes before the render
     request.cancel.check();
     result.route = RenderRoute::Mesh;
     switch (*format) {

@@ -18,6 +18,9 @@ std::filesystem::path sourceFolder(const Model& model, const RenderRequest& requ
 SurfaceLibrary surfacesFor(const ViewSettings& view, const std::filesystem::path& dir);
 // The file's camera and light with the request's overrides.
 RaytraceOptions raytraceOptions(const ViewSettings& v, const RenderRequest& request);
+// The mesh widths a picture with these options needs: stems at least half a pixel thick,
+// and those under about two pixels across left as curves for the ray tracer.
+void setPictureRadii(MeshOptions& mo, const Bounds& bounds, const RaytraceOptions& options);
 // Line art's options: pfg's scale factor and the background.
 RenderOptions lineArtOptions(const Model& model, const RenderRequest& request);
 
