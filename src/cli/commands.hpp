@@ -44,6 +44,8 @@ struct RenderCommandOptions {
     bool kolamDots = false;     // --dots: the kolam's dots
     bool sizeGiven = false, backgroundGiven = false;
     bool derivation = false;  // --derivation: draw the derivation steps, not the turtle's picture
+    bool noInstancing = false;  // --no-instancing: .glb repeated organs as copies
+    bool compress = false;      // --compress: .glb buffers with EXT_meshopt_compression
 };
 
 enum class DeriveFormat { Text, Json };
