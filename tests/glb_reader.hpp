@@ -6,6 +6,7 @@
 
 #include <meshoptimizer.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
