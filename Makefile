@@ -14,6 +14,8 @@ MUSIC_PACKAGES := libsmf-dev libfluidsynth-dev timgm6mb-soundfont lilypond
 ANIMATION_PACKAGES := libgif-dev libwebp-dev libavcodec-dev libavformat-dev libavutil-dev \
                       libswscale-dev libx264-dev
 CPFG_PACKAGES := libmcpp-dev
+# GLB files: meshoptimizer's vertex orders and EXT_meshopt_compression codecs.
+MESH_PACKAGES := libmeshoptimizer-dev
 # Node.js and npm run the glTF validator in the tests; a machine that already has them
 # (from any source) keeps its own, since Debian's npm conflicts with other Node builds.
 NODE_PACKAGES := $(shell command -v node >/dev/null 2>&1 || echo nodejs) \
@@ -52,7 +54,7 @@ endef
 
 deps:
 	$(call install-missing,$(DEBIAN_PACKAGES) $(CPFG_PACKAGES) $(NODE_PACKAGES) $(MUSIC_PACKAGES) \
-	  $(STUDIO_PACKAGES) $(ANIMATION_PACKAGES))
+	  $(STUDIO_PACKAGES) $(ANIMATION_PACKAGES) $(MESH_PACKAGES))
 
 configure: deps
 	@cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release > /dev/null

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -24,6 +25,7 @@
 #include <tuple>
 #include <vector>
 
+#include "gltf_validator.hpp"
 #include "graftal/graftal.hpp"
 #include "graftal/mesh.hpp"
 #include "graftal/surface.hpp"
@@ -40,8 +42,12 @@ using graftal::Scene;
 using graftal::Segment;
 using graftal::Vec3;
 using graftal::Vec3f;
+using graftal::testing::kToolsDir;
 using graftal::testing::readFile;
 using graftal::testing::TempDir;
+using graftal::testing::validate;
+using graftal::testing::Validation;
+using graftal::testing::validatorInstalled;
 
 // ---------------------------------------------------------------------------------------
 // A small plant, built the way a 3D turtle would: bending axes with shared joints, side
@@ -159,6 +165,23 @@ std::size_t verticesPerColor(const Mesh& m) {
     return n;
 }
 
+// A triangle's corners rotated to start at the smallest, so that two listings of the same
+// triangle with the same winding compare equal.
+std::array<float, 9> canonicalTriangle(const std::array<Vec3f, 3>& c) {
+    auto key = [](const Vec3f& v) { return std::tuple(v.x, v.y, v.z); };
+    int first = 0;
+    for (int k = 1; k < 3; ++k)
+        if (key(c[k]) < key(c[first])) first = k;
+    std::array<float, 9> out;
+    for (int k = 0; k < 3; ++k) {
+        const Vec3f& v = c[(first + k) % 3];
+        out[3 * k] = v.x;
+        out[3 * k + 1] = v.y;
+        out[3 * k + 2] = v.z;
+    }
+    return out;
+}
+
 double linear(float srgb) {
     return srgb <= 0.04045 ? srgb / 12.92 : std::pow((srgb + 0.055) / 1.055, 2.4);
 }
@@ -180,57 +203,6 @@ std::vector<fs::path> listing(const fs::path& dir) {
     std::sort(out.begin(), out.end());
     return out;
 }
-
-// ---------------------------------------------------------------------------------------
-// The official validator, run with Node.
-
-const fs::path kToolsDir = GRAFTAL_TOOLS_DIR;
-const fs::path kValidatorScript = fs::path(GRAFTAL_TESTS_DIR) / "tools" / "validate_gltf.mjs";
-
-bool validatorInstalled() {
-    return fs::is_directory(kToolsDir / "node_modules" / "gltf-validator");
-}
-
-std::string quoted(const fs::path& p) {
-    std::string s = "'";
-    for (char c : p.string()) s += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return s + "'";
-}
-
-struct Validation {
-    int status = -1;
-    std::string output;
-    nlohmann::json report;
-};
-
-Validation validate(const fs::path& file) {
-    Validation v;
-    const std::string command =
-        "node " + quoted(kValidatorScript) + " " + quoted(file) + " " + quoted(kToolsDir) + " 2>&1";
-    FILE* pipe = ::popen(command.c_str(), "r");
-    if (!pipe) return v;
-    char buffer[4096];
-    for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;)
-        v.output.append(buffer, n);
-    const int raw = ::pclose(pipe);
-    v.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    const std::vector<std::string> out = lines(v.output);
-    if (!out.empty()) v.report = nlohmann::json::parse(out.back(), nullptr, false);
-    return v;
-}
-
-// Fails the test (never skips it) when the validator is missing.
-#define EXPECT_VALID_GLTF(file)                                                        \
-    do {                                                                               \
-        ASSERT_TRUE(validatorInstalled())                                              \
-            << "the glTF validator is not installed in " << kToolsDir / "node_modules" \
-            << ": run `make test-tools` (`make test` installs it)";                    \
-        const Validation validation = validate(file);                                  \
-        EXPECT_EQ(validation.status, 0) << validation.output;                          \
-        ASSERT_TRUE(validation.report.is_object()) << validation.output;               \
-        EXPECT_EQ(validation.report.value("numErrors", -1), 0) << validation.output;   \
-        std::cout << "validator: " << validation.output;                               \
-    } while (false)
 
 // ---------------------------------------------------------------------------------------
 // OBJ
@@ -480,7 +452,10 @@ TEST(GlbWriter, RoundTripAndValidator) {
         EXPECT_EQ(position.minValues.size(), 3u);
         EXPECT_EQ(position.maxValues.size(), 3u);
         EXPECT_EQ(normal.count, position.count);
-        EXPECT_EQ(index.componentType, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT);
+        // 16-bit indices while they reach every vertex (65535 is the restart value).
+        EXPECT_EQ(index.componentType, position.count < 65535
+                                           ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT
+                                           : TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT);
         EXPECT_EQ(index.count, 3 * group->second.size());
         vertices += position.count;
         indices += index.count;
@@ -502,19 +477,34 @@ TEST(GlbWriter, RoundTripAndValidator) {
     EXPECT_EQ(vertices, verticesPerColor(m));
     EXPECT_EQ(indices, 3 * m.triangleCount());
 
-    // The first primitive's first triangle is the mesh's first triangle of that colour.
-    const tinygltf::Primitive& p0 = model.meshes[0].primitives[0];
-    const tinygltf::Accessor& ia = model.accessors[p0.indices];
-    const tinygltf::BufferView& iv = model.bufferViews[ia.bufferView];
-    const tinygltf::Accessor& pa = model.accessors[p0.attributes.at("POSITION")];
-    const tinygltf::BufferView& pv = model.bufferViews[pa.bufferView];
-    const unsigned char* bytes = model.buffers[0].data.data();
-    for (int k = 0; k < 3; ++k) {
-        std::uint32_t v;
-        std::memcpy(&v, bytes + iv.byteOffset + ia.byteOffset + 4 * k, 4);
-        Vec3f p;
-        std::memcpy(&p, bytes + pv.byteOffset + pa.byteOffset + 12 * v, 12);
-        EXPECT_EQ(p, m.positions[m.indices[3 * groups.begin()->second.front() + k]]);
+    // Each primitive holds its colour's triangles, reordered for the vertex cache: the same
+    // corners in the same turn (so the same winding), in another order.
+    group = groups.begin();
+    for (const tinygltf::Primitive& p : model.meshes[0].primitives) {
+        std::multiset<std::array<float, 9>> written, expected;
+        const tinygltf::Accessor& ia = model.accessors[p.indices];
+        const tinygltf::BufferView& iv = model.bufferViews[ia.bufferView];
+        const tinygltf::Accessor& pa = model.accessors[p.attributes.at("POSITION")];
+        const tinygltf::BufferView& pv = model.bufferViews[pa.bufferView];
+        const unsigned char* bytes = model.buffers[0].data.data();
+        const std::size_t indexSize =
+            ia.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 2 : 4;
+        for (std::size_t t = 0; t < ia.count / 3; ++t) {
+            std::array<Vec3f, 3> corner;
+            for (std::size_t k = 0; k < 3; ++k) {
+                std::uint32_t v = 0;
+                std::memcpy(&v, bytes + iv.byteOffset + ia.byteOffset + indexSize * (3 * t + k),
+                            indexSize);
+                std::memcpy(&corner[k], bytes + pv.byteOffset + pa.byteOffset + 12 * v, 12);
+            }
+            written.insert(canonicalTriangle(corner));
+        }
+        for (std::size_t t : group->second)
+            expected.insert(
+                canonicalTriangle({m.positions[m.indices[3 * t]], m.positions[m.indices[3 * t + 1]],
+                                   m.positions[m.indices[3 * t + 2]]}));
+        EXPECT_EQ(written, expected) << "colour " << group->first;
+        ++group;
     }
 
     EXPECT_VALID_GLTF(path);

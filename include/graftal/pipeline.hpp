@@ -71,6 +71,7 @@ struct RenderRequest : DeriveRequest {
     std::optional<bool> splinePath;
     bool kolamDots = false;  // draw the kolam's dots (also when the file says `kolam dots: on`)
     bool derivationDiagram = false;  // draw the derivation steps, not the turtle's picture
+    GlbOptions glb;                  // .glb files: instancing, compression
 };
 
 enum class RenderRoute {

@@ -46,6 +46,8 @@ struct RenderCommandOptions {
     bool ground = false;           // --ground: a floor under a ray-traced plant
     bool sizeGiven = false, backgroundGiven = false;
     bool derivation = false;  // --derivation: draw the derivation steps, not the turtle's picture
+    bool noInstancing = false;  // --no-instancing: .glb repeated organs as copies
+    bool compress = false;      // --compress: .glb buffers with EXT_meshopt_compression
 };
 
 enum class DeriveFormat { Text, Json };

@@ -206,6 +206,11 @@ int main(int argc, char** argv) {
                      "B-spline through every turtle position, f moves included, drawn whole "
                      "(kolams; --spline 8 unless given)");
     render->add_flag("--dots", out.kolamDots, "draw the dots a kolam's loops surround (pulli)");
+    render->add_flag("--no-instancing", out.noInstancing,
+                     ".glb: copy repeated organs instead of EXT_mesh_gpu_instancing (for "
+                     "viewers without it)");
+    render->add_flag("--compress", out.compress,
+                     ".glb: compress with EXT_meshopt_compression (viewers need its decoder)");
 
     graftal::cli::MusicCommandOptions musicOut;
     auto* music = app.add_subcommand(

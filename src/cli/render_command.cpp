@@ -79,6 +79,8 @@ int runRender(const InputOptions& in, const RenderCommandOptions& out) {
     if (out.splinePath) request.splinePath = true;
     request.kolamDots = out.kolamDots;
     request.derivationDiagram = out.derivation;
+    request.glb.instancing = !out.noInstancing;
+    request.glb.compression = out.compress;
     checkRenderRequest(request);  // option errors before the file is read
 
     Loaded l = loadInput(in);

@@ -1,30 +1,41 @@
-// glTF 2.0 binary (.glb) through tinygltf: one mesh with one primitive per colour, each
-// with its own vertices, and a PBR material per colour. The materials are double-sided
-// because polygons and surfaces are single sheets (see src/geometry/mesh.cpp).
-#define TINYGLTF_NO_STB_IMAGE
-#define TINYGLTF_NO_STB_IMAGE_WRITE
-#define TINYGLTF_NO_EXTERNAL_IMAGE
-#include <tiny_gltf.h>
+// glTF 2.0 binary (.glb). Each mesh gets one primitive per colour, each with its own
+// vertices in meshoptimizer's vertex cache and fetch order, and a PBR material per colour.
+// The materials are double-sided because polygons and surfaces are single sheets (see
+// src/geometry/mesh.cpp).
+//
+// A MeshScene's prototypes are written once and placed with EXT_mesh_gpu_instancing: one
+// node per prototype whose instances carry translation, rotation and scale. That extension
+// has no fallback for viewers without it (they would draw each prototype once, at the
+// origin), so, as its specification asks, it is listed as required; GlbOptions::instancing
+// = false writes copies instead. Mirrored placements use a mirrored copy of their prototype
+// (instanced renderers do not rewind a mirrored instance's triangles); placements that are
+// not a rotation times a scale per axis (shear) are copied into the mesh.
+#include <meshoptimizer.h>
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <map>
 #include <string>
+#include <utility>
 
+#include "glb_builder.hpp"
 #include "graftal/mesh.hpp"
+#include "graftal/mesh_scene.hpp"
 #include "graftal/output.hpp"
+#include "instance_transform.hpp"
 #include "mesh_file.hpp"
 
 namespace graftal {
 
 namespace {
 
-static_assert(std::endian::native == std::endian::little,
-              "glTF buffers are little-endian and are copied from memory as they are");
+using nlohmann::json;
 
 constexpr double kRoughness = 0.8;
+// Mantissa bits of compressed positions (see compressedPositions).
+constexpr int kPositionBits = 16;
 // The GLB header and chunk lengths are 32-bit; leave room for the JSON chunk.
 constexpr std::size_t kMaxBinaryBytes = std::numeric_limits<std::uint32_t>::max() - (1u << 24);
 
@@ -34,161 +45,331 @@ double linearFromSrgb(float c) {
     return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
 }
 
-class ModelBuilder {
+template <class T>
+std::span<const unsigned char> bytesOf(const std::vector<T>& v) {
+    return {reinterpret_cast<const unsigned char*>(v.data()), v.size() * sizeof(T)};
+}
+
+class GltfDocument {
   public:
-    ModelBuilder() {
-        model_.asset.version = "2.0";
-        model_.asset.generator = "graftal";
-        model_.buffers.emplace_back();
+    GltfDocument(const std::vector<Rgb>& palette, const GlbOptions& options,
+                 const std::filesystem::path& path)
+        : palette_(palette), builder_(options.compression), path_(path) {
+        json& d = builder_.document();
+        d["asset"] = {{"version", "2.0"}, {"generator", "graftal"}};
+        d["nodes"] = json::array({{{"name", "graftal"}}});
+        d["scenes"] = json::array({{{"nodes", {0}}}});
+        d["scene"] = 0;
     }
 
-    // One primitive: the group's vertices (positions, normals) and triangles.
-    void addPrimitive(const Mesh& mesh, const mesh_file::GroupVertices& group, int material,
-                      tinygltf::Mesh& out) {
-        tinygltf::Primitive primitive;
-        primitive.mode = TINYGLTF_MODE_TRIANGLES;
-        primitive.material = material;
-        primitive.attributes["POSITION"] = addVectors(mesh.positions, group.vertices, true);
-        primitive.attributes["NORMAL"] = addVectors(mesh.normals, group.vertices, false);
-        primitive.indices = addIndices(group.indices);
-        out.primitives.push_back(std::move(primitive));
-    }
+    void reserve(std::size_t bytes) { builder_.reserve(std::min(bytes, kMaxBinaryBytes)); }
 
-    int addMaterial(std::uint16_t color, const Rgb& c) {
-        tinygltf::Material m;
-        m.name = mesh_file::materialName(color);
-        m.pbrMetallicRoughness.baseColorFactor = {linearFromSrgb(c.r), linearFromSrgb(c.g),
-                                                  linearFromSrgb(c.b), 1.0};
-        m.pbrMetallicRoughness.metallicFactor = 0;
-        m.pbrMetallicRoughness.roughnessFactor = kRoughness;
-        // tinygltf writes an empty emissiveFactor array (invalid) unless it is set.
-        m.emissiveFactor = {0, 0, 0};
-        m.doubleSided = true;
-        model_.materials.push_back(std::move(m));
-        return static_cast<int>(model_.materials.size() - 1);
-    }
-
-    std::size_t binarySize() const { return model_.buffers[0].data.size(); }
-    void reserve(std::size_t bytes) { model_.buffers[0].data.reserve(bytes); }
-
-    tinygltf::Model finish(tinygltf::Mesh mesh) {
-        tinygltf::Node node;
-        node.name = "graftal";
-        if (!mesh.primitives.empty()) {
-            model_.meshes.push_back(std::move(mesh));
-            node.mesh = 0;
+    // A glTF mesh with one primitive per colour; -1 when the mesh has no triangles.
+    int addMesh(const Mesh& mesh, const std::string& name) {
+        if (mesh.triangleCount() == 0) return -1;
+        json primitives = json::array();
+        mesh_file::VertexSplitter splitter(mesh);
+        for (const mesh_file::ColorGroup& g : mesh_file::groupByColor(mesh, palette_)) {
+            primitives.push_back(primitive(mesh, splitter.split(g), material(g.color)));
+            checkSize();
         }
-        // glTF requires every buffer to hold at least one byte.
-        if (model_.buffers[0].data.empty()) model_.buffers.clear();
-        model_.nodes.push_back(std::move(node));
-        tinygltf::Scene scene;
-        scene.nodes = {0};
-        model_.scenes.push_back(std::move(scene));
-        model_.defaultScene = 0;
-        return std::move(model_);
+        json& meshes = builder_.document()["meshes"];
+        meshes.push_back({{"name", name}, {"primitives", std::move(primitives)}});
+        return static_cast<int>(meshes.size() - 1);
+    }
+
+    // Shows `mesh` as it is (part of node 0).
+    void show(int mesh, const std::string& name) {
+        if (mesh < 0) return;
+        json& root = builder_.document()["nodes"][0];
+        if (!root.contains("mesh")) {
+            root["mesh"] = mesh;
+            return;
+        }
+        addChild({{"name", name}, {"mesh", mesh}});
+    }
+
+    // Shows `mesh` once per transform, through EXT_mesh_gpu_instancing.
+    void showInstances(int mesh, const std::string& name,
+                       const std::vector<instance_transform::Trs>& instances) {
+        if (mesh < 0 || instances.empty()) return;
+        std::vector<float> translation, rotation, scale;
+        translation.reserve(3 * instances.size());
+        rotation.reserve(4 * instances.size());
+        scale.reserve(3 * instances.size());
+        for (const instance_transform::Trs& t : instances) {
+            translation.insert(translation.end(), t.translation.begin(), t.translation.end());
+            rotation.insert(rotation.end(), t.rotation.begin(), t.rotation.end());
+            scale.insert(scale.end(), t.scale.begin(), t.scale.end());
+        }
+        const std::size_t n = instances.size();
+        json attributes = {
+            {"TRANSLATION",
+             builder_.addAccessor(builder_.addAttributeView(bytesOf(translation), n, 12, 0),
+                                  glb::kFloat, "VEC3", n)},
+            {"ROTATION",
+             builder_.addAccessor(builder_.addAttributeView(bytesOf(rotation), n, 16, 0),
+                                  glb::kFloat, "VEC4", n)},
+            {"SCALE", builder_.addAccessor(builder_.addAttributeView(bytesOf(scale), n, 12, 0),
+                                           glb::kFloat, "VEC3", n)}};
+        checkSize();
+        builder_.requireExtension(glb::kGpuInstancing);
+        addChild({{"name", name},
+                  {"mesh", mesh},
+                  {"extensions", {{glb::kGpuInstancing, {{"attributes", attributes}}}}}});
+    }
+
+    void write(std::ostream& out) {
+        if (!builder_.write(out)) throw tooLarge();
     }
 
   private:
-    int addVectors(const std::vector<Vec3f>& source, const std::vector<std::uint32_t>& which,
-                   bool bounds) {
-        // Written straight into the buffer: a big plant's buffer is hundreds of megabytes.
-        std::vector<unsigned char>& buffer = model_.buffers[0].data;
-        const std::size_t offset = buffer.size();
-        buffer.resize(offset + 12 * which.size());
-        unsigned char* out = buffer.data() + offset;
-        // POSITION needs min and max, which must be exactly the stored floats.
-        float low[3] = {HUGE_VALF, HUGE_VALF, HUGE_VALF};
-        float high[3] = {-HUGE_VALF, -HUGE_VALF, -HUGE_VALF};
-        for (std::uint32_t v : which) {
-            const float xyz[3] = {source[v].x, source[v].y, source[v].z};
-            std::memcpy(out, xyz, sizeof xyz);
-            out += sizeof xyz;
-            for (int k = 0; k < 3; ++k) {
-                low[k] = std::min(low[k], xyz[k]);
-                high[k] = std::max(high[k], xyz[k]);
-            }
+    Error tooLarge() const {
+        return fileError(path_, "cannot write " +
+                                    std::string(fileFormatInfo(FileFormat::Glb).name) +
+                                    ": the mesh is larger than the 4 GB a .glb file can hold");
+    }
+    void checkSize() const {
+        if (builder_.binarySize() > kMaxBinaryBytes) throw tooLarge();
+    }
+
+    void addChild(json node) {
+        json& nodes = builder_.document()["nodes"];
+        nodes.push_back(std::move(node));
+        nodes[0]["children"].push_back(nodes.size() - 1);
+    }
+
+    int material(std::uint16_t color) {
+        const auto [it, added] = materials_.try_emplace(color, 0);
+        if (!added) return it->second;
+        const Rgb c = mesh_file::paletteColor(palette_, color);
+        json& materials = builder_.document()["materials"];
+        materials.push_back(
+            {{"name", mesh_file::materialName(color)},
+             {"pbrMetallicRoughness",
+              {{"baseColorFactor",
+                {linearFromSrgb(c.r), linearFromSrgb(c.g), linearFromSrgb(c.b), 1.0}},
+               {"metallicFactor", 0.0},
+               {"roughnessFactor", kRoughness}}},
+             {"doubleSided", true}});
+        it->second = static_cast<int>(materials.size() - 1);
+        return it->second;
+    }
+
+    // One colour's triangles, reordered for the vertex cache and its vertices for fetching
+    // in that order: faster to draw, and the order meshopt's codecs compress best.
+    json primitive(const Mesh& mesh, const mesh_file::GroupVertices& group, int materialIndex) {
+        const std::size_t vertexCount = group.vertices.size();
+        std::vector<std::uint32_t> indices(group.indices.size());
+        meshopt_optimizeVertexCache(indices.data(), group.indices.data(), indices.size(),
+                                    vertexCount);
+        std::vector<std::uint32_t> remap(vertexCount);
+        meshopt_optimizeVertexFetchRemap(remap.data(), indices.data(), indices.size(), vertexCount);
+        meshopt_remapIndexBuffer(indices.data(), indices.data(), indices.size(), remap.data());
+        std::vector<std::uint32_t> order(vertexCount);
+        for (std::size_t v = 0; v < vertexCount; ++v) order[remap[v]] = group.vertices[v];
+
+        std::vector<float> positions;
+        positions.reserve(3 * vertexCount);
+        for (std::uint32_t v : order) {
+            const Vec3f& p = mesh.positions[v];
+            positions.insert(positions.end(), {p.x, p.y, p.z});
         }
-        const int accessor =
-            addAccessor(addView(offset, 12 * which.size(), TINYGLTF_TARGET_ARRAY_BUFFER),
-                        TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, which.size());
-        if (bounds) {
-            model_.accessors[accessor].minValues.assign(low, low + 3);
-            model_.accessors[accessor].maxValues.assign(high, high + 3);
+        const int position =
+            builder_.compressing() ? compressedPositions(positions) : plainPositions(positions);
+        const int normal =
+            builder_.compressing() ? quantizedNormals(mesh, order) : plainNormals(mesh, order);
+        // 16-bit indices where they reach every vertex (65535 is reserved for restarts).
+        const bool shortIndices = vertexCount < std::numeric_limits<std::uint16_t>::max();
+        const int index = builder_.addAccessor(
+            builder_.addTriangleView(indices, shortIndices),
+            shortIndices ? glb::kUnsignedShort : glb::kUnsignedInt, "SCALAR", indices.size());
+        return {{"attributes", {{"POSITION", position}, {"NORMAL", normal}}},
+                {"indices", index},
+                {"material", materialIndex},
+                {"mode", 4}};
+    }
+
+    // POSITION needs min and max, which must be exactly the stored floats.
+    void setBounds(int accessor, const std::vector<float>& xyz) {
+        std::vector<double> low(3, HUGE_VAL), high(3, -HUGE_VAL);
+        for (std::size_t i = 0; i < xyz.size(); ++i) {
+            low[i % 3] = std::min<double>(low[i % 3], xyz[i]);
+            high[i % 3] = std::max<double>(high[i % 3], xyz[i]);
         }
+        builder_.document()["accessors"][accessor]["min"] = low;
+        builder_.document()["accessors"][accessor]["max"] = high;
+    }
+
+    int plainPositions(const std::vector<float>& positions) {
+        const std::size_t n = positions.size() / 3;
+        const int accessor = builder_.addAccessor(
+            builder_.addAttributeView(bytesOf(positions), n, 12, glb::kArrayBuffer), glb::kFloat,
+            "VEC3", n);
+        setBounds(accessor, positions);
         return accessor;
     }
 
-    // Every view starts on a 4-byte boundary, as float and uint32 accessors need; all
-    // the data here is 4-byte values, so the buffer never needs padding.
-    int addView(std::size_t offset, std::size_t bytes, int target) {
-        tinygltf::BufferView view;
-        view.buffer = 0;
-        view.byteOffset = offset;
-        view.byteLength = bytes;
-        view.target = target;
-        model_.bufferViews.push_back(view);
-        return static_cast<int>(model_.bufferViews.size() - 1);
+    // Floats kept to kPositionBits of mantissa (sign included), one exponent per vertex: the
+    // codec then finds the low bits zero. A vertex moves by at most 2^-14 of its largest
+    // coordinate, or of 1 if that is smaller (4 mm at 60 m from the origin).
+    int compressedPositions(const std::vector<float>& positions) {
+        const std::size_t n = positions.size() / 3;
+        std::vector<std::uint32_t> filtered(3 * n);
+        meshopt_encodeFilterExp(filtered.data(), n, 12, kPositionBits, positions.data());
+        std::vector<float> stored(3 * n);
+        std::memcpy(stored.data(), filtered.data(), 12 * n);
+        meshopt_decodeFilterExp(stored.data(), n, 12);
+        const int accessor = builder_.addAccessor(
+            builder_.addAttributeView(bytesOf(filtered), n, 12, glb::kArrayBuffer,
+                                      glb::Filter::Exponential),
+            glb::kFloat, "VEC3", n);
+        setBounds(accessor, stored);
+        return accessor;
     }
 
-    int addIndices(const std::vector<std::uint32_t>& indices) {
-        std::vector<unsigned char>& buffer = model_.buffers[0].data;
-        const std::size_t offset = buffer.size();
-        const std::size_t bytes = 4 * indices.size();
-        buffer.resize(offset + bytes);
-        std::memcpy(buffer.data() + offset, indices.data(), bytes);
-        return addAccessor(addView(offset, bytes, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
-                           TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR,
-                           indices.size());
+    int plainNormals(const Mesh& mesh, const std::vector<std::uint32_t>& order) {
+        std::vector<float> normals;
+        normals.reserve(3 * order.size());
+        for (std::uint32_t v : order) {
+            const Vec3f& n = mesh.normals[v];
+            normals.insert(normals.end(), {n.x, n.y, n.z});
+        }
+        return builder_.addAccessor(
+            builder_.addAttributeView(bytesOf(normals), order.size(), 12, glb::kArrayBuffer),
+            glb::kFloat, "VEC3", order.size());
     }
 
-    int addAccessor(int view, int componentType, int type, std::size_t count) {
-        tinygltf::Accessor a;
-        a.bufferView = view;
-        a.byteOffset = 0;
-        a.componentType = componentType;
-        a.type = type;
-        a.count = count;
-        model_.accessors.push_back(std::move(a));
-        return static_cast<int>(model_.accessors.size() - 1);
+    // Octahedral 8-bit normals (KHR_mesh_quantization's normalized bytes, padded to 4):
+    // about a degree of error, invisible in shading, and a quarter of the floats' size
+    // before the codec.
+    int quantizedNormals(const Mesh& mesh, const std::vector<std::uint32_t>& order) {
+        std::vector<float> xyzw;
+        xyzw.reserve(4 * order.size());
+        for (std::uint32_t v : order) {
+            const Vec3f& n = mesh.normals[v];
+            xyzw.insert(xyzw.end(), {n.x, n.y, n.z, 0.0f});
+        }
+        std::vector<std::int8_t> filtered(4 * order.size());
+        meshopt_encodeFilterOct(filtered.data(), order.size(), 4, 8, xyzw.data());
+        builder_.requireExtension(glb::kMeshQuantization);
+        const int accessor = builder_.addAccessor(
+            builder_.addAttributeView(bytesOf(filtered), order.size(), 4, glb::kArrayBuffer,
+                                      glb::Filter::Octahedral, true),
+            glb::kByte, "VEC3", order.size());
+        builder_.document()["accessors"][accessor]["normalized"] = true;
+        return accessor;
     }
 
-    tinygltf::Model model_;
+    const std::vector<Rgb>& palette_;
+    glb::Builder builder_;
+    std::filesystem::path path_;
+    std::map<std::uint16_t, int> materials_;
 };
 
-}  // namespace
+void checkScene(const MeshScene& scene, const std::filesystem::path& path,
+                const std::string& format) {
+    mesh_file::checkMesh(scene.mesh, path, format);
+    for (const Mesh& p : scene.prototypes) mesh_file::checkMesh(p, path, format);
+    for (const MeshPlacement& p : scene.placements)
+        if (p.prototype >= scene.prototypes.size())
+            throw fileError(path, "cannot write " + format +
+                                      ": invalid mesh: placement of prototype " +
+                                      std::to_string(p.prototype) + " of " +
+                                      std::to_string(scene.prototypes.size()));
+}
 
-void writeGlb(const Mesh& mesh, const std::filesystem::path& path) {
+// The placements in `which` copied into one mesh, as MeshScene::flattened copies them.
+Mesh copiesOf(const MeshScene& scene, const std::vector<const MeshPlacement*>& which) {
+    Mesh out;
+    out.palette = scene.palette();
+    for (const MeshPlacement* p : which) {
+        const Mesh& proto = scene.prototypes[p->prototype];
+        const auto base = static_cast<std::uint32_t>(out.positions.size());
+        for (const Vec3f& v : proto.positions) out.positions.push_back(p->transform.point(v));
+        for (const Vec3f& n : proto.normals) out.normals.push_back(p->transform.normal(n));
+        const bool mirrored = p->transform.determinant() < 0;
+        for (std::size_t t = 0; t + 2 < proto.indices.size(); t += 3) {
+            const std::uint32_t a = proto.indices[t], b = proto.indices[t + 1],
+                                c = proto.indices[t + 2];
+            if (mirrored)
+                out.indices.insert(out.indices.end(), {base + a, base + c, base + b});
+            else
+                out.indices.insert(out.indices.end(), {base + a, base + b, base + c});
+        }
+        out.triangleColor.insert(out.triangleColor.end(), proto.triangleColor.begin(),
+                                 proto.triangleColor.end());
+    }
+    return out;
+}
+
+void writeDocument(const std::filesystem::path& path,
+                   const std::function<void(GltfDocument&)>& build, const std::vector<Rgb>& palette,
+                   const GlbOptions& options, std::size_t estimate) {
     const std::string format(fileFormatInfo(FileFormat::Glb).name);
-    mesh_file::checkMesh(mesh, path, format);
     // The directory is checked first, so that a missing one is reported before any work.
     writeStreamAtomically(
         path,
         [&](std::ostream& file) {
-            const std::vector<mesh_file::ColorGroup> groups = mesh_file::groupByColor(mesh);
-            mesh_file::VertexSplitter splitter(mesh);
-
-            ModelBuilder builder;
-            // Exact unless vertices are shared by colours (then they are written once per
-            // colour).
-            builder.reserve(
-                std::min(kMaxBinaryBytes, 24 * mesh.positions.size() + 4 * mesh.indices.size()));
-            tinygltf::Mesh gltfMesh;
-            gltfMesh.name = "graftal";
-            for (const mesh_file::ColorGroup& g : groups) {
-                const int material =
-                    builder.addMaterial(g.color, mesh_file::paletteColor(mesh, g.color));
-                builder.addPrimitive(mesh, splitter.split(g), material, gltfMesh);
-                if (builder.binarySize() > kMaxBinaryBytes)
-                    throw fileError(path, "cannot write " + format +
-                                              ": the mesh is larger than the 4 GB a .glb file "
-                                              "can hold");
-            }
-            const tinygltf::Model model = builder.finish(std::move(gltfMesh));
-            tinygltf::TinyGLTF gltf;
-            if (!gltf.WriteGltfSceneToStream(&model, file, false, true))
-                throw fileError(path, "cannot write " + format + ": the glTF library failed");
+            GltfDocument document(palette, options, path);
+            document.reserve(estimate);
+            build(document);
+            document.write(file);
         },
         format);
+}
+
+}  // namespace
+
+void writeGlb(const Mesh& mesh, const std::filesystem::path& path) {
+    mesh_file::checkMesh(mesh, path, std::string(fileFormatInfo(FileFormat::Glb).name));
+    // Exact unless vertices are shared by colours (then they are written once per colour).
+    writeDocument(
+        path, [&](GltfDocument& d) { d.show(d.addMesh(mesh, "graftal"), "graftal"); }, mesh.palette,
+        GlbOptions{}, 24 * mesh.positions.size() + 4 * mesh.indices.size());
+}
+
+void writeGlb(const MeshScene& scene, const std::filesystem::path& path,
+              const GlbOptions& options) {
+    checkScene(scene, path, std::string(fileFormatInfo(FileFormat::Glb).name));
+    // Which placements are instanced, per prototype and mirroring, and which are copied.
+    std::map<std::pair<std::uint32_t, bool>, std::vector<instance_transform::Trs>> instances;
+    std::vector<const MeshPlacement*> copied;
+    for (const MeshPlacement& p : scene.placements) {
+        if (!options.instancing) {
+            copied.push_back(&p);
+            continue;
+        }
+        const bool mirrored = p.transform.determinant() < 0;
+        const auto trs = instance_transform::decompose(
+            mirrored ? instance_transform::withMirroredPrototype(p.transform) : p.transform);
+        if (trs)
+            instances[{p.prototype, mirrored}].push_back(*trs);
+        else
+            copied.push_back(&p);
+    }
+    std::size_t estimate = 24 * scene.mesh.positions.size() + 4 * scene.mesh.indices.size();
+    for (const MeshPlacement* p : copied) {
+        const Mesh& proto = scene.prototypes[p->prototype];
+        estimate += 24 * proto.positions.size() + 4 * proto.indices.size();
+    }
+    writeDocument(
+        path,
+        [&](GltfDocument& d) {
+            d.show(d.addMesh(scene.mesh, "graftal"), "graftal");
+            d.show(d.addMesh(copiesOf(scene, copied), "copies"), "copies");
+            for (const auto& [key, transforms] : instances) {
+                const auto [prototype, mirrored] = key;
+                const std::string name =
+                    "prototype " + std::to_string(prototype) + (mirrored ? " mirrored" : "");
+                const Mesh& proto = scene.prototypes[prototype];
+                const int mesh = mirrored
+                                     ? d.addMesh(instance_transform::mirroredPrototype(proto), name)
+                                     : d.addMesh(proto, name);
+                d.showInstances(mesh, name, transforms);
+            }
+        },
+        scene.palette(), options, estimate);
 }
 
 }  // namespace graftal

@@ -37,12 +37,19 @@ inline void checkMesh(const Mesh& mesh, const std::filesystem::path& path,
             throw bad("vertex index " + std::to_string(i) + " is out of range");
 }
 
-// Colour indices past the end of the palette wrap around, as Scene::colorOf does.
+// Colour indices past the end of the palette wrap around, as Scene::colorOf does. A
+// scene's prototypes index the palette of its mesh, so the palette is passed on its own.
+inline std::uint16_t paletteIndex(const std::vector<Rgb>& palette, std::uint16_t color) {
+    return palette.empty() ? color : static_cast<std::uint16_t>(color % palette.size());
+}
 inline std::uint16_t paletteIndex(const Mesh& mesh, std::uint16_t color) {
-    return mesh.palette.empty() ? color : static_cast<std::uint16_t>(color % mesh.palette.size());
+    return paletteIndex(mesh.palette, color);
+}
+inline Rgb paletteColor(const std::vector<Rgb>& palette, std::uint16_t color) {
+    return palette.empty() ? Rgb{0.5f, 0.5f, 0.5f} : palette[paletteIndex(palette, color)];
 }
 inline Rgb paletteColor(const Mesh& mesh, std::uint16_t color) {
-    return mesh.palette.empty() ? Rgb{0.5f, 0.5f, 0.5f} : mesh.palette[paletteIndex(mesh, color)];
+    return paletteColor(mesh.palette, color);
 }
 inline std::string materialName(std::uint16_t paletteIndex) {
     return "color" + std::to_string(paletteIndex);
@@ -61,9 +68,9 @@ struct ColorGroup {
 };
 
 // In palette order; palette entries no triangle uses get no group.
-inline std::vector<ColorGroup> groupByColor(const Mesh& mesh) {
+inline std::vector<ColorGroup> groupByColor(const Mesh& mesh, const std::vector<Rgb>& palette) {
     std::vector<std::uint32_t> count(std::numeric_limits<std::uint16_t>::max() + 1, 0);
-    for (std::uint16_t c : mesh.triangleColor) ++count[paletteIndex(mesh, c)];
+    for (std::uint16_t c : mesh.triangleColor) ++count[paletteIndex(palette, c)];
     std::vector<ColorGroup> groups;
     std::vector<std::uint32_t> groupOf(count.size(), 0);
     for (std::size_t c = 0; c < count.size(); ++c) {
@@ -73,8 +80,11 @@ inline std::vector<ColorGroup> groupByColor(const Mesh& mesh) {
         groups.back().triangles.reserve(count[c]);
     }
     for (std::uint32_t t = 0; t < mesh.triangleColor.size(); ++t)
-        groups[groupOf[paletteIndex(mesh, mesh.triangleColor[t])]].triangles.push_back(t);
+        groups[groupOf[paletteIndex(palette, mesh.triangleColor[t])]].triangles.push_back(t);
     return groups;
+}
+inline std::vector<ColorGroup> groupByColor(const Mesh& mesh) {
+    return groupByColor(mesh, mesh.palette);
 }
 
 // A colour group with vertices of its own, for formats whose vertices carry the colour

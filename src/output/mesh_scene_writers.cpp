@@ -1,5 +1,6 @@
-// The 3D files of an instanced scene, for writers that do not (yet) keep its instancing:
-// they are given the flattened mesh.
+// OBJ and PLY files of an instanced scene: neither format can place one mesh several
+// times, so they are given the flattened mesh (every placement copied). The GLB writer
+// keeps the instancing (gltf_writer.cpp).
 #include "graftal/mesh_scene.hpp"
 #include "graftal/output.hpp"
 
@@ -11,10 +12,6 @@ void writeObj(const MeshScene& scene, const std::filesystem::path& path) {
 
 void writePly(const MeshScene& scene, const std::filesystem::path& path) {
     writePly(scene.flattened(), path);
-}
-
-void writeGlb(const MeshScene& scene, const std::filesystem::path& path, const GlbOptions&) {
-    writeGlb(scene.flattened(), path);
 }
 
 }  // namespace graftal

@@ -336,7 +336,7 @@ RenderResult render(const Model& model, const RenderRequest& request) {
             writePly(mesh, output);
             break;
         case FileFormat::Glb:
-            writeGlb(mesh, output);
+            writeGlb(mesh, output, request.glb);
             break;
         case FileFormat::Png:
         case FileFormat::Svg:
