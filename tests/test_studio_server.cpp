@@ -253,6 +253,43 @@ TEST_F(StudioServerTest, DeriveSendsStatsAndSegmentsAsBinary) {
     EXPECT_EQ(splitDerive(overridden->body).first["stats"]["segments"], 3);
 }
 
+TEST_F(StudioServerTest, AnEditInACommentReusesThePicture) {
+    auto first = post("/api/derive", model(kHilbert));
+    ASSERT_EQ(first->status, 200);
+    auto [meta, geometry] = splitDerive(first->body);
+    EXPECT_FALSE(meta["stats"]["reused"]);
+    EXPECT_FALSE(geometry.empty());
+    const std::string tag = meta["tag"];
+
+    // A comment and spacing edited: the same picture, and the page that has it gets none.
+    std::string commented = kHilbert;
+    commented.replace(commented.find("Hilbert curve"), 13, "Hilbert's curve, edited");
+    commented.replace(commented.find("Axiom: X"), 8, "Axiom:    X   ");
+    json body = model(commented);
+    body["have"] = tag;
+    auto again = splitDerive(post("/api/derive", body)->body);
+    EXPECT_EQ(again.first["tag"], tag);
+    EXPECT_TRUE(again.first["unchanged"]);
+    EXPECT_EQ(again.first["geometry"], "none");
+    EXPECT_TRUE(again.second.empty());
+    // Without `have` the kept picture is sent again.
+    body.erase("have");
+    auto resent = splitDerive(post("/api/derive", body)->body);
+    EXPECT_TRUE(resent.first["stats"]["reused"]);
+    EXPECT_EQ(resent.second, geometry);
+
+    // A production edited: a new picture.
+    std::string edited = kHilbert;
+    edited.replace(edited.find("X --> -YF"), 9, "X --> +YF");
+    body = model(edited);
+    body["have"] = tag;
+    auto changed = splitDerive(post("/api/derive", body)->body);
+    EXPECT_NE(changed.first["tag"], tag);
+    EXPECT_FALSE(changed.first["unchanged"]);
+    EXPECT_FALSE(changed.first["stats"]["reused"]);
+    EXPECT_NE(changed.second, geometry);
+}
+
 TEST_F(StudioServerTest, BadModelsAnswerErrorsAndTheServerGoesOn) {
     auto bad = post("/api/derive", model("Axiom: F\nF --> F[\nderivation length: 2\n"));
     ASSERT_TRUE(bad);

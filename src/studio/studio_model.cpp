@@ -6,6 +6,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -19,6 +20,7 @@
 #include "graftal/streamed_picture.hpp"
 #include "graftal/surface.hpp"
 #include "graftal/turtle.hpp"
+#include "lang/source_text.hpp"
 
 namespace graftal::studio {
 
@@ -122,6 +124,50 @@ std::uint32_t rgbaBytes(const Rgb& c) {
 
 }  // namespace
 
+std::string pictureKey(const ModelInput& input) {
+    std::string key =
+        input.file.string() + '\n' + (input.steps ? std::to_string(*input.steps) : "-") + '\n';
+    for (const auto& [name, value] : input.defines) key += name + '=' + value + '\n';
+    key += "--\n";
+    SourceText source;
+    DiagnosticList diagnostics;
+    if (input.text.find("#include") != std::string::npos ||
+        !prepareSource(input.text, input.file.string(), source, diagnostics)) {
+        static std::atomic<unsigned long> unique{0};
+        return key + std::to_string(unique.fetch_add(1)) + '\n' + input.text;
+    }
+    for (const SourceLine& line : source.lines) {
+        key += std::to_string(line.number) + ':';
+        const std::string& t = line.text;
+        std::size_t i = t.find_first_not_of(" \t\r");
+        if (i == std::string::npos)
+            i = t.size();  // a blank line (a comment's, perhaps)
+        else
+            key.append(t, 0, i);  // leading blanks kept: a line starting with TAB continues
+        bool blank = false;
+        for (; i < t.size(); ++i) {
+            const char c = t[i];
+            if (c == ' ' || c == '\t' || c == '\r') {
+                blank = true;
+                continue;
+            }
+            if (blank) key += ' ';
+            blank = false;
+            const std::size_t end = std::min(skipStringLiteral(t, i), t.size() - 1);
+            key.append(t, i, end - i + 1);  // a string literal keeps its blanks
+            i = end;
+        }
+        key += '\n';
+    }
+    return key;
+}
+
+std::string pictureTag(const std::string& key) {
+    char tag[17];
+    std::snprintf(tag, sizeof tag, "%016zx", std::hash<std::string>{}(key));
+    return tag;
+}
+
 std::vector<NumericDefine> numericDefines(const std::string& text) {
     std::vector<NumericDefine> defines;
     std::istringstream lines(text);
@@ -212,7 +258,9 @@ StudioPicture derivePicture(const ModelInput& input, const StudioLimits& limits,
     const std::size_t moduleCount = modules.size();
 
     const auto drawStart = Clock::now();
-    Scene scene = interpret(model, applyHomomorphism(model.lsystem, modules, options));
+    Scene scene = model.lsystem.homomorphism.empty()
+                      ? interpret(model, modules)
+                      : interpret(model, applyHomomorphism(model.lsystem, modules, options));
     modules = ModuleString{};
     cancel.check();
     if (int n = model.view.splineSubdivisions; n > 0) scene = smoothSegments(scene, n);

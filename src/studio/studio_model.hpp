@@ -51,6 +51,14 @@ std::vector<NumericDefine> numericDefines(const std::string& text);
 
 nlohmann::json diagnosticsJson(const std::vector<Diagnostic>& diagnostics);
 
+// What decides the picture: the file, steps and overrides, and the text with its comments
+// blanked (as the parser blanks them) and runs of blanks made one. An edit in a comment or
+// in spacing keeps the key, and the picture already made is reused. A text that includes
+// other files gets a key of its own every time (the included files may have changed).
+std::string pictureKey(const ModelInput& input);
+// A short tag of a key, for the page to say which picture it shows.
+std::string pictureTag(const std::string& key);
+
 // {ok, diagnostics, defines, derivationLength, name}: never throws for bad text.
 nlohmann::json parseReport(const ModelInput& input);
 
@@ -63,6 +71,7 @@ struct StudioPicture {
     std::string stringHead;  // the first modules of the derived string
     std::vector<std::string> notes;
     nlohmann::json stats;  // modules, segments, polygons, bbox, deriveMs, drawMs, is3D
+    std::string lines;     // encodeLines(scene), made once and sent again while unchanged
 };
 
 // Parses, derives and interprets. Throws Error (with every parse error), Cancelled when

@@ -67,6 +67,23 @@ bool isIdentifier(const std::string& s) {
     return !std::isdigit(static_cast<unsigned char>(s[0]));
 }
 
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+        .count();
+}
+
+// Counts the derivations the page waits for while it lives; thumbnails wait for none.
+class LiveRequest {
+  public:
+    explicit LiveRequest(std::atomic<int>& count) : count_(count) { ++count_; }
+    ~LiveRequest() { --count_; }
+    LiveRequest(const LiveRequest&) = delete;
+    LiveRequest& operator=(const LiveRequest&) = delete;
+
+  private:
+    std::atomic<int>& count_;
+};
+
 const char* contentTypeFor(const std::string& extension) {
     if (extension == "png") return "image/png";
     if (extension == "svg") return "image/svg+xml; charset=utf-8";
@@ -85,6 +102,7 @@ struct StudioServer::Impl {
     std::thread thread;
     StudioSessions sessions;
     std::atomic<bool> stopping{false};
+    std::atomic<int> liveRequests{0};  // derivations for the live view under way
     int port = 0;
     std::mutex thumbnailMutex;  // one thumbnail at a time: the live view comes first
     std::map<std::string, std::pair<std::int64_t, std::string>> thumbnails;
@@ -156,13 +174,6 @@ struct StudioServer::Impl {
             }
         }
         return input;
-    }
-
-    static std::string inputKey(const ModelInput& input) {
-        std::string key =
-            input.file.string() + '\n' + (input.steps ? std::to_string(*input.steps) : "-") + '\n';
-        for (const auto& [name, value] : input.defines) key += name + '=' + value + '\n';
-        return key + input.text;
     }
 
     static std::string sessionOf(const json& body) {
@@ -263,33 +274,47 @@ struct StudioServer::Impl {
                     }));
 
         // Metadata and geometry in one answer: a 4-byte JSON length, the JSON, padding to
-        // a multiple of 4, then the line buffer (encodeLines) or a summarised PNG.
+        // a multiple of 4, then the line buffer (encodeLines) or a summarised PNG. A
+        // request whose picture key is the session's last one reuses that picture; when the
+        // page says it shows it already (`have`: its tag) the answer carries no geometry.
         server.Post("/api/derive",
                     guarded([this](const httplib::Request& req, httplib::Response& res) {
                         const auto received = std::chrono::steady_clock::now();
                         const json body = parseBody(req);
                         const ModelInput input = modelInput(body);
                         const std::string session = sessionOf(body);
+                        const std::string key = pictureKey(input);
+                        const std::string tag = pictureTag(key);
                         const CancellationToken token = sessions.begin(session);
-                        auto picture = std::make_shared<StudioPicture>(
-                            derivePicture(input, options.limits, token, scratch));
+                        std::shared_ptr<const StudioPicture> picture = sessions.kept(session, key);
+                        const bool reused = picture != nullptr;
+                        const bool unchanged = reused && body.value("have", "") == tag;
+                        double encodeMs = 0;
+                        if (!picture) {
+                            LiveRequest live(liveRequests);
+                            auto made = std::make_shared<StudioPicture>(
+                                derivePicture(input, options.limits, token, scratch));
+                            const auto encodeStart = std::chrono::steady_clock::now();
+                            if (made->summaryPng.empty()) made->lines = encodeLines(made->scene);
+                            encodeMs = millisecondsSince(encodeStart);
+                            picture = made;
+                            sessions.keep(session, key, picture);
+                        }
                         const bool summarised = !picture->summaryPng.empty();
-                        const auto encodeStart = std::chrono::steady_clock::now();
-                        const std::string geometry =
-                            summarised ? picture->summaryPng : encodeLines(picture->scene);
                         json stats = picture->stats;
-                        stats["encodeMs"] = std::chrono::duration<double, std::milli>(
-                                                std::chrono::steady_clock::now() - encodeStart)
-                                                .count();
-                        stats["serverMs"] = std::chrono::duration<double, std::milli>(
-                                                std::chrono::steady_clock::now() - received)
-                                                .count();
+                        stats["encodeMs"] = encodeMs;
+                        stats["reused"] = reused;
+                        stats["serverMs"] = millisecondsSince(received);
                         json meta = {
                             {"stats", stats},
                             {"steps", picture->steps},
-                            {"string", picture->stringHead},
+                            {"tag", tag},
+                            {"unchanged", unchanged},
+                            {"string", unchanged ? std::string() : picture->stringHead},
                             {"notes", picture->notes},
-                            {"geometry", summarised ? "png" : "lines"},
+                            {"geometry", unchanged    ? "none"
+                                         : summarised ? "png"
+                                                      : "lines"},
                             {"meshAvailable", !summarised && picture->scene.segments.size() <=
                                                                  options.limits.meshSegmentBudget}};
                         std::string out(4, '\0');
@@ -298,8 +323,7 @@ struct StudioServer::Impl {
                         std::memcpy(out.data(), &length, 4);
                         out += metaText;
                         out.append((4 - out.size() % 4) % 4, ' ');
-                        out += geometry;
-                        sessions.keep(session, inputKey(input), std::move(picture));
+                        if (!unchanged) out += summarised ? picture->summaryPng : picture->lines;
                         res.set_content(std::move(out), "application/octet-stream");
                     }));
 
@@ -310,9 +334,10 @@ struct StudioServer::Impl {
                         const ModelInput input = modelInput(body);
                         const std::string session = sessionOf(body);
                         std::shared_ptr<const StudioPicture> picture =
-                            sessions.kept(session, inputKey(input));
+                            sessions.kept(session, pictureKey(input));
                         if (!picture) {
                             const CancellationToken token = sessions.begin(session);
+                            LiveRequest live(liveRequests);
                             picture = std::make_shared<StudioPicture>(
                                 derivePicture(input, options.limits, token, scratch));
                         }
@@ -350,6 +375,9 @@ struct StudioServer::Impl {
                        const fs::path path = root.resolve(rel, true);
                        const std::int64_t mtime = modificationTime(path);
                        std::lock_guard lock(thumbnailMutex);
+                       // The live view first: a thumbnail waits (a while) for its derivations.
+                       for (int i = 0; i < 200 && liveRequests > 0 && !stopping; ++i)
+                           std::this_thread::sleep_for(std::chrono::milliseconds(50));
                        auto it = thumbnails.find(rel);
                        if (it == thumbnails.end() || it->second.first != mtime) {
                            StudioLimits limits = options.limits;

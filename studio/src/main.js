@@ -7,7 +7,7 @@ import * as api from './api.js';
 import { lsystemLanguage } from './lsystem_language.js';
 import { View2D } from './view2d.js';
 import { View3D } from './view3d.js';
-import { showFiles, markCurrent, refreshThumbnail } from './files_panel.js';
+import { showFiles, markCurrent, refreshThumbnail, holdThumbnails } from './files_panel.js';
 import { showDefines, writeBackChanges } from './defines_panel.js';
 
 const $ = (id) => document.getElementById(id);
@@ -15,7 +15,7 @@ const $ = (id) => document.getElementById(id);
 const state = {
   path: null, mtime: 0, savedText: '', steps: null, derivationLength: 0,
   overrides: {}, defines: [], view: '2d', last: null, seq: 0, shown: 0, string: '',
-  saveTimer: 0, loading: false, fitNext: true,
+  saveTimer: 0, loading: false, fitNext: true, shownTag: '',
 };
 // What the browser tests read: the number of pictures shown and the time from an edit
 // (or a slider move) to its picture.
@@ -76,6 +76,7 @@ function refresh() {
   const seq = ++state.seq;
   const started = performance.now();
   const body = modelBody();
+  holdThumbnails(+1);
   api.parse(body).then((report) => {
     if (seq !== state.seq) return;
     if (report.ok || report.diagnostics.length) showDiagnostics(report.diagnostics);
@@ -84,18 +85,23 @@ function refresh() {
     state.defines = report.defines;
     showDefines(report.defines, state, { changed: refresh, writeBack });
   }).catch(() => {});
-  return api.derive(body).then(async (result) => {
+  return api.derive({ ...body, have: state.shownTag }).then(async (result) => {
     if (seq < state.shown) return;
     state.shown = seq;
-    state.last = result;
     const arrived = performance.now();
-    await showPicture(result);
+    // The same picture as shown (an edit in a comment): nothing to draw.
+    if (!result.meta.unchanged) {
+      state.last = result;
+      state.shownTag = result.meta.tag;
+      await showPicture(result);
+    }
     studio.pictures += 1;
     const done = performance.now();
     studio.timings.push({
       seq, ms: done - started, fetchMs: arrived - started, drawMs: done - arrived,
       serverMs: result.meta.stats.serverMs, deriveMs: result.meta.stats.deriveMs, turtleMs: result.meta.stats.drawMs,
-      segments: result.meta.stats.segments,
+      encodeMs: result.meta.stats.encodeMs, segments: result.meta.stats.segments, bytes: result.bytes,
+      unchanged: result.meta.unchanged,
     });
     $('views').classList.remove('stale');
   }).catch((e) => {
@@ -104,7 +110,7 @@ function refresh() {
     $('views').classList.add('stale');
     $('note').textContent = e.message;
     if (e.diagnostics?.length) showDiagnostics(e.diagnostics);
-  });
+  }).finally(() => holdThumbnails(-1));
 }
 
 async function showPicture({ meta, lines, png }) {
