@@ -1,5 +1,6 @@
 // The studio's computations, each through the library's own calls: parse(), the
-// pipeline's stream decision and derivation options, interpret(), buildMesh() and render().
+// pipeline's stream decision and derivation options, interpret(), buildMeshScene() and
+// render().
 #include "studio/studio_model.hpp"
 
 #include <algorithm>
@@ -14,6 +15,7 @@
 #include "graftal/bspline.hpp"
 #include "graftal/color_map.hpp"
 #include "graftal/mesh.hpp"
+#include "graftal/mesh_scene.hpp"
 #include "graftal/output.hpp"
 #include "graftal/pipeline.hpp"
 #include "graftal/projection.hpp"
@@ -401,9 +403,12 @@ std::string meshGlb(const StudioPicture& picture, const fs::path& scratch) {
         const double extent = std::max({b.max.x - b.min.x, b.max.y - b.min.y, b.max.z - b.min.z});
         options.minimumRadius = 0.5 * extent / 500.0;
     }
-    const Mesh mesh = buildMesh(scene, options, &surfaces);
+    // Repeated organs (leaves, flowers) once each, placed by EXT_mesh_gpu_instancing, the
+    // buffers compressed by EXT_meshopt_compression: the page's loader reads both.
+    options.instancing = true;
+    const MeshScene mesh = buildMeshScene(scene, options, &surfaces);
     const fs::path glb = scratchFile(scratch, "glb");
-    writeGlb(mesh, glb);
+    writeGlb(mesh, glb, GlbOptions{.instancing = true, .compression = true});
     return readAndRemove(glb);
 }
 

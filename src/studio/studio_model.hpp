@@ -85,7 +85,9 @@ StudioPicture derivePicture(const ModelInput& input, const StudioLimits& limits,
 // triangles (9 floats each) with their RGBA colours.
 std::string encodeLines(const Scene& scene);
 
-// The picture's mesh (stems as tubes, polygons, surfaces) as glTF binary.
+// The picture's mesh (stems as tubes, polygons, surfaces) as glTF binary: repeated organs
+// instanced (EXT_mesh_gpu_instancing) and the buffers compressed (EXT_meshopt_compression)
+// as far as writeGlb(MeshScene) does so.
 std::string meshGlb(const StudioPicture& picture, const std::filesystem::path& scratch);
 
 // The model rendered by render() to a file of `extension` (png, svg, pdf, glb, obj, ply);
