@@ -85,11 +85,22 @@ class LiveRequest {
 };
 
 const char* contentTypeFor(const std::string& extension) {
-    if (extension == "png") return "image/png";
-    if (extension == "svg") return "image/svg+xml; charset=utf-8";
-    if (extension == "pdf") return "application/pdf";
-    if (extension == "glb") return "model/gltf-binary";
-    return "application/octet-stream";
+    static const std::map<std::string, const char*> types = {
+        {".png", "image/png"},
+        {".svg", "image/svg+xml; charset=utf-8"},
+        {".pdf", "application/pdf"},
+        {".glb", "model/gltf-binary"},
+        {".ply", "application/octet-stream"},
+        {".zip", "application/zip"},
+        {".gif", "image/gif"},
+        {".webp", "image/webp"},
+        {".mp4", "video/mp4"},
+        {".mid", "audio/midi"},
+        {".wav", "audio/wav"},
+        {".musicxml", "application/vnd.recordare.musicxml+xml"},
+        {".ly", "text/x-lilypond; charset=utf-8"}};
+    const auto it = types.find(extension);
+    return it == types.end() ? "application/octet-stream" : it->second;
 }
 
 }  // namespace
@@ -154,6 +165,9 @@ struct StudioServer::Impl {
             input.file = root.resolve(body["path"].get<std::string>(), false);
         else
             input.file = root.folder() / "untitled.l";
+        // Its view file, when the root lets the studio read it.
+        input.viewFile = viewFileOf(input.file);
+        if (!input.viewFile.empty()) input.viewText = readFile(input.viewFile);
         if (body.contains("steps") && !body["steps"].is_null()) {
             if (!body["steps"].is_number_integer())
                 throw BadRequest("\"steps\" must be a whole number");
@@ -174,6 +188,17 @@ struct StudioServer::Impl {
             }
         }
         return input;
+    }
+
+    // The view file of a model file inside the root (empty when none or refused).
+    fs::path viewFileOf(const fs::path& file) const {
+        const fs::path view = viewFileBeside(file);
+        if (view.empty()) return {};
+        try {
+            return root.resolve(view.lexically_relative(root.folder()).generic_string(), true);
+        } catch (const PathRefused&) {
+            return {};
+        }
     }
 
     static std::string sessionOf(const json& body) {
@@ -218,7 +243,7 @@ struct StudioServer::Impl {
         server.Get("/api/info", guarded([this](const httplib::Request&, httplib::Response& res) {
                        sendJson(res, {{"root", root.folder().string()},
                                       {"onlyFile", root.onlyFile()},
-                                      {"formats", {"png", "svg", "pdf", "glb", "obj", "ply"}},
+                                      {"formats", exportFormats()},
                                       {"limits",
                                        {{"bodyBytes", options.limits.bodyBytes},
                                         {"segmentBudget", options.limits.segmentBudget},
@@ -357,16 +382,15 @@ struct StudioServer::Impl {
                 const json body = parseBody(req);
                 const ModelInput input = modelInput(body);
                 const std::string format = body.value("format", "");
-                const bool word = !format.empty() && format.size() < 8 &&
-                                  std::all_of(format.begin(), format.end(),
-                                              [](char c) { return c >= 'a' && c <= 'z'; });
-                if (!word || !fileFormatFor("x." + format))
-                    throw BadRequest("unknown export format '" + format + "'");
+                const auto& formats = exportFormats();
+                if (std::find(formats.begin(), formats.end(), format) == formats.end())
+                    throw BadRequest("unknown export format '" + format.substr(0, 20) + "'");
                 const CancellationToken token = sessions.begin(sessionOf(body) + "/export");
-                std::string bytes = exportFile(input, format, options.limits, token, scratch);
-                const std::string name = input.file.stem().string() + "." + format;
-                res.set_header("Content-Disposition", "attachment; filename=\"" + name + "\"");
-                res.set_content(std::move(bytes), contentTypeFor(format));
+                ExportedFile file = exportFile(input, format, options.limits, token, scratch);
+                res.set_header("Content-Disposition",
+                               "attachment; filename=\"" + file.fileName + "\"");
+                res.set_content(std::move(file.bytes),
+                                contentTypeFor(fs::path(file.fileName).extension().string()));
             }));
 
         server.Get("/api/thumbnail",
@@ -384,7 +408,8 @@ struct StudioServer::Impl {
                            limits.memoryLimit =
                                std::min<std::size_t>(limits.memoryLimit, std::size_t(256) << 20);
                            limits.deriveSeconds = 20;
-                           thumbnails[rel] = {mtime, thumbnailPng(path, 160, limits, scratch)};
+                           thumbnails[rel] = {
+                               mtime, thumbnailPng(path, viewFileOf(path), 160, limits, scratch)};
                            it = thumbnails.find(rel);
                        }
                        res.set_header("Cache-Control", "no-cache");

@@ -103,7 +103,9 @@ export async function mesh(model) {
   return (await post('/api/mesh', model)).arrayBuffer();
 }
 
+// {blob, name}: the name the server gives the download (an OBJ comes as NAME-obj.zip).
 export async function exportFile(model, format) {
   const res = await post('/api/export', { ...model, format });
-  return res.blob();
+  const name = /filename="([^"]+)"/.exec(res.headers.get('Content-Disposition') || '')?.[1];
+  return { blob: await res.blob(), name };
 }

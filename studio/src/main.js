@@ -58,14 +58,19 @@ function toEditorDiagnostic(d) {
   return { from, to: Math.max(to, from), severity, message: d.message };
 }
 
+// A diagnostic of another file (the view file applied to the model) is listed, not
+// underlined in the editor.
+const editedName = () => (state.path || 'untitled.l').split('/').pop();
+const ofOtherFile = (d) => d.file && d.file !== editedName();
+
 function showDiagnostics(list) {
   const shown = list.filter((d) => d.severity !== 'note' || d.line > 0);
-  editor.dispatch(setDiagnostics(editor.state, shown.map(toEditorDiagnostic)));
+  editor.dispatch(setDiagnostics(editor.state, shown.filter((d) => !ofOtherFile(d)).map(toEditorDiagnostic)));
   $('problems').replaceChildren(...shown.map((d) => {
     const div = document.createElement('div');
     div.className = 'problem';
     div.dataset.line = d.line;
-    div.textContent = `${d.line}:${d.column}: ${d.severity}: ${d.message}`;
+    div.textContent = `${ofOtherFile(d) ? d.file + ':' : ''}${d.line}:${d.column}: ${d.severity}: ${d.message}`;
     return div;
   }));
 }
@@ -81,6 +86,7 @@ function refresh() {
     if (seq !== state.seq) return;
     if (report.ok || report.diagnostics.length) showDiagnostics(report.diagnostics);
     state.derivationLength = report.derivationLength;
+    $('view-file').textContent = report.viewFile ? `with ${report.viewFile}` : '';
     updateStepSlider();
     state.defines = report.defines;
     showDefines(report.defines, state, { changed: refresh, writeBack });
@@ -316,23 +322,29 @@ for (const button of document.querySelectorAll('#view-tabs [data-view]')) {
 }
 $('fit').addEventListener('click', () => { view2d.resetView(); if (view3d.renderer) { view3d.fit(); view3d.render(); } });
 
-for (const button of document.querySelectorAll('#exports [data-format]')) {
-  button.addEventListener('click', async () => {
-    const format = button.dataset.format;
-    try {
-      const blob = await api.exportFile(modelBody(), format);
-      const a = document.createElement('a');
-      a.href = URL.createObjectURL(blob);
-      a.download = (state.path || 'untitled.l').split('/').pop().replace(/\.l$/, '') + '.' + format;
-      document.body.append(a);
-      a.click();
-      a.remove();
-      setTimeout(() => URL.revokeObjectURL(a.href), 10000);
-    } catch (e) {
-      $('note').textContent = `export ${format}: ${e.message}`;
-    }
-  });
+async function exportAs(format) {
+  $('note').textContent = `exporting ${format}…`;
+  try {
+    const { blob, name } = await api.exportFile(modelBody(), format);
+    const a = document.createElement('a');
+    a.href = URL.createObjectURL(blob);
+    a.download = name || (state.path || 'untitled.l').split('/').pop().replace(/\.l$/, '') + '.' + format;
+    document.body.append(a);
+    a.click();
+    a.remove();
+    setTimeout(() => URL.revokeObjectURL(a.href), 10000);
+    $('note').textContent = '';
+  } catch (e) {
+    $('note').textContent = `export ${format}: ${e.message}`;
+  }
 }
+for (const button of document.querySelectorAll('#exports [data-format]'))
+  button.addEventListener('click', () => exportAs(button.dataset.format));
+$('export-more').addEventListener('change', (e) => {
+  const format = e.target.value;
+  e.target.value = '';
+  if (format) exportAs(format);
+});
 
 window.addEventListener('beforeunload', () => { if (text() !== state.savedText) saveNow(); });
 

@@ -176,17 +176,49 @@ try {
   await page.waitForFunction(() => window.studio.editor.state.doc.toString().includes('#define A2 30'), null, { timeout: 30000 });
 
   console.log('- Exports download');
+  // The stored entries of a zip: name -> text.
+  const unzip = (b) => {
+    const files = {};
+    for (let at = 0; b.readUInt32LE(at) === 0x04034b50;) {
+      const size = b.readUInt32LE(at + 18), nameLength = b.readUInt16LE(at + 26), extra = b.readUInt16LE(at + 28);
+      const name = b.toString('latin1', at + 30, at + 30 + nameLength);
+      const start = at + 30 + nameLength + extra;
+      files[name] = b.toString('latin1', start, start + size);
+      at = start + size;
+    }
+    return files;
+  };
+  // A button (or the "more" list) downloads a file; it is saved and read back.
+  const exportDownload = async (format, check, name, more) => {
+    console.log('  export ' + format);
+    const click = more ? page.selectOption('#export-more', format) : page.click(`#exports [data-format="${format}"]`);
+    const downloaded = page.waitForEvent('download', { timeout: 180000 });
+    // An export that fails says so in the note: fail at once with its message.
+    const failed = page.waitForFunction((f) => document.getElementById('note').textContent.startsWith(`export ${f}:`),
+      format, { timeout: 180000 }).then(async () => { throw new Error(await page.textContent('#note')); });
+    const [download] = await Promise.all([Promise.race([downloaded, failed]), click]);
+    failed.catch(() => {});
+    const saved = path.join(work, 'export.' + format);
+    await download.saveAs(saved);
+    assert.equal(download.suggestedFilename(), name);
+    assert.ok(check(fs.readFileSync(saved)), format + ' export reads back');
+  };
   // Exports download files that read back.
-  for (const [format, check] of [
+  for (const [format, check, name, more] of [
     ['png', (b) => b.subarray(1, 4).toString() === 'PNG' && b.readUInt32BE(16) === 800],
     ['svg', (b) => b.toString().includes('<svg')],
     ['glb', (b) => b.subarray(0, 4).toString() === 'glTF' && JSON.parse(b.subarray(20, 20 + b.readUInt32LE(12)).toString()).meshes.length > 0],
+    ['ply', (b) => b.toString('latin1', 0, 4) === 'ply\n' && /element vertex [1-9]/.test(b.toString('latin1', 0, 400))],
+    ['obj', (b) => {
+      // A zip of the OBJ and the .mtl it names, side by side.
+      const files = unzip(b);
+      const obj = files['honda-monopodial-tree.obj'], mtl = files['honda-monopodial-tree.mtl'];
+      return obj && mtl && obj.includes('mtllib honda-monopodial-tree.mtl') && /\nv [-0-9]/.test(obj) &&
+        /\nf \d/.test(obj) && mtl.includes('newmtl');
+    }, 'honda-monopodial-tree-obj.zip'],
+    ['gif', (b) => b.toString('latin1', 0, 6) === 'GIF89a' && b.readUInt16LE(6) === 800 && b.length > 2000, null, true],
   ]) {
-    const [download] = await Promise.all([page.waitForEvent('download'), page.click(`#exports [data-format="${format}"]`)]);
-    const saved = path.join(work, 'export.' + format);
-    await download.saveAs(saved);
-    assert.equal(download.suggestedFilename(), 'honda-monopodial-tree.' + format);
-    assert.ok(check(fs.readFileSync(saved)), format + ' export reads back');
+    await exportDownload(format, check, name ?? 'honda-monopodial-tree.' + format, more);
   }
 
   // The picture of docs/studio.md: the tree in 3D, thumbnails loaded.
@@ -197,6 +229,14 @@ try {
   await page.waitForTimeout(1500);
   await page.screenshot({ path: 'studio-screenshot.png' });
   await page.click('#view-tabs [data-view="2d"]');
+
+  console.log('- Music export');
+  // The curve of the Hilbert music model as a MIDI file (graftal music's writer).
+  before = await pictures();
+  await page.click('#file-list .file[data-path="fig6.9-hilbert-music.l"]');
+  await nextPicture(before);
+  await exportDownload('mid', (b) => b.toString('latin1', 0, 4) === 'MThd' && b.includes('MTrk') && b.length > 100,
+    'fig6.9-hilbert-music.mid', true);
 
   console.log('- Speed');
   // Speed: keystroke to picture at ~10^5 segments, first picture at ~10^6.
