@@ -11,11 +11,12 @@ endif()
 add_library(graftal_studio STATIC
   src/studio/studio_root.cpp
   src/studio/studio_model.cpp
-  src/studio/studio_server.cpp)
+  src/studio/studio_server.cpp
+  src/studio/zip_archive.cpp)
 set_target_properties(graftal_studio PROPERTIES POSITION_INDEPENDENT_CODE ON)
 target_include_directories(graftal_studio PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/src)
 target_compile_options(graftal_studio PRIVATE ${GRAFTAL_WARNINGS})
-target_link_libraries(graftal_studio PUBLIC graftal_pipeline nlohmann_json::nlohmann_json
+target_link_libraries(graftal_studio PUBLIC graftal_pipeline graftal_music nlohmann_json::nlohmann_json
   PRIVATE PkgConfig::HTTPLIB)
 
 set(GRAFTAL_STUDIO_NODE ${CMAKE_BINARY_DIR}/studio-node)

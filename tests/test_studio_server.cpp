@@ -9,9 +9,14 @@
 #include <filesystem>
 #include <fstream>
 #include <future>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <tuple>
 
+#include "graftal/derivation.hpp"
+#include "graftal/model.hpp"
+#include "graftal/turtle.hpp"
 #include "studio/studio_server.hpp"
 
 namespace fs = std::filesystem;
@@ -253,6 +258,75 @@ TEST_F(StudioServerTest, DeriveSendsStatsAndSegmentsAsBinary) {
     EXPECT_EQ(splitDerive(overridden->body).first["stats"]["segments"], 3);
 }
 
+TEST_F(StudioServerTest, AnEditInACommentReusesThePicture) {
+    auto first = post("/api/derive", model(kHilbert));
+    ASSERT_EQ(first->status, 200);
+    auto [meta, geometry] = splitDerive(first->body);
+    EXPECT_FALSE(meta["stats"]["reused"]);
+    EXPECT_FALSE(geometry.empty());
+    const std::string tag = meta["tag"];
+
+    // A comment and spacing edited: the same picture, and the page that has it gets none.
+    std::string commented = kHilbert;
+    commented.replace(commented.find("Hilbert curve"), 13, "Hilbert's curve, edited");
+    commented.replace(commented.find("Axiom: X"), 8, "Axiom:    X   ");
+    json body = model(commented);
+    body["have"] = tag;
+    auto again = splitDerive(post("/api/derive", body)->body);
+    EXPECT_EQ(again.first["tag"], tag);
+    EXPECT_TRUE(again.first["unchanged"]);
+    EXPECT_EQ(again.first["geometry"], "none");
+    EXPECT_TRUE(again.second.empty());
+    // Without `have` the kept picture is sent again.
+    body.erase("have");
+    auto resent = splitDerive(post("/api/derive", body)->body);
+    EXPECT_TRUE(resent.first["stats"]["reused"]);
+    EXPECT_EQ(resent.second, geometry);
+
+    // A production edited: a new picture.
+    std::string edited = kHilbert;
+    edited.replace(edited.find("X --> -YF"), 9, "X --> +YF");
+    body = model(edited);
+    body["have"] = tag;
+    auto changed = splitDerive(post("/api/derive", body)->body);
+    EXPECT_NE(changed.first["tag"], tag);
+    EXPECT_FALSE(changed.first["unchanged"]);
+    EXPECT_FALSE(changed.first["stats"]["reused"]);
+    EXPECT_NE(changed.second, geometry);
+}
+
+TEST_F(StudioServerTest, TheViewFileBesideTheModelAppliesToTheEditedText) {
+    // hilbert.v turns by 45 degrees where the text says 90: the picture follows the view
+    // file, as `graftal render hilbert.l hilbert.v` draws it.
+    writeText(root / "hilbert.v", "angle increment: 45\n");
+    auto report = json::parse(post("/api/parse", model(kHilbert))->body);
+    EXPECT_EQ(report["viewFile"], "hilbert.v");
+    auto [meta, geometry] = splitDerive(post("/api/derive", model(kHilbert))->body);
+    graftal::ParseOptions options;
+    options.viewFile = (root / "hilbert.v").string();
+    const graftal::Model expected = graftal::loadModel(root / "hilbert.l", options).orThrow();
+    const graftal::Bounds b = graftal::interpret(expected, graftal::derive(expected, -1)).bounds();
+    EXPECT_NEAR(meta["stats"]["bbox"]["max"][0].get<double>(), b.max.x, 1e-9);
+    EXPECT_NEAR(meta["stats"]["bbox"]["min"][1].get<double>(), b.min.y, 1e-9);
+    // The same text in a folder without a view file: the text's 90 degrees, a 7 x 7 box.
+    auto plain = splitDerive(post("/api/derive", model(kHilbert, "sub/nested.l"))->body).first;
+    EXPECT_FLOAT_EQ(plain["stats"]["bbox"]["max"][0].get<float>(), 7);
+    EXPECT_NE(plain["stats"]["bbox"], meta["stats"]["bbox"]);
+
+    // A model folder (one .l, one .v) uses its view file whatever its name; an error in it
+    // names the view file.
+    fs::create_directories(root / "plant");
+    writeText(root / "plant" / "plant.l", kHilbert);
+    writeText(root / "plant" / "view.v", "angle increment: x\n");
+    auto bad = json::parse(post("/api/parse", model(kHilbert, "plant/plant.l"))->body);
+    EXPECT_EQ(bad["viewFile"], "view.v");
+    EXPECT_FALSE(bad["ok"]);
+    ASSERT_FALSE(bad["diagnostics"].empty());
+    EXPECT_EQ(bad["diagnostics"][0]["file"], "view.v");
+    EXPECT_EQ(bad["diagnostics"][0]["line"], 1);
+    EXPECT_EQ(post("/api/derive", model(kHilbert, "plant/plant.l"))->status, 422);
+}
+
 TEST_F(StudioServerTest, BadModelsAnswerErrorsAndTheServerGoesOn) {
     auto bad = post("/api/derive", model("Axiom: F\nF --> F[\nderivation length: 2\n"));
     ASSERT_TRUE(bad);
@@ -278,22 +352,56 @@ TEST_F(StudioServerTest, MeshIsGlb) {
     EXPECT_EQ(mesh->get_header_value("Content-Type"), "model/gltf-binary");
 }
 
-TEST_F(StudioServerTest, ExportsEveryFormatThroughRender) {
-    const std::map<std::string, std::string> magic = {
-        {"png", "\x89PNG"}, {"pdf", "%PDF"}, {"glb", "glTF"}, {"svg", "<"}, {"obj", "#"}};
-    for (const auto& [format, start] : magic) {
+TEST_F(StudioServerTest, ExportsPicturesModelsAnimationsAndMusic) {
+    // Format, the file's first bytes, its name.
+    const std::vector<std::tuple<std::string, std::string, std::string>> exports = {
+        {"png", "\x89PNG", "hilbert.png"},        {"pdf", "%PDF", "hilbert.pdf"},
+        {"glb", "glTF", "hilbert.glb"},           {"svg", "<", "hilbert.svg"},
+        {"ply", "ply\n", "hilbert.ply"},          {"obj", "PK\x03\x04", "hilbert-obj.zip"},
+        {"gif", "GIF89a", "hilbert.gif"},         {"mid", "MThd", "hilbert.mid"},
+        {"musicxml", "<?xml", "hilbert.musicxml"}};
+    for (const auto& [format, start, name] : exports) {
         json body = model(kHilbert);
         body["format"] = format;
         auto res = post("/api/export", body);
         ASSERT_TRUE(res) << format;
         ASSERT_EQ(res->status, 200) << format << ": " << res->body.substr(0, 200);
         EXPECT_EQ(res->body.substr(0, start.size()), start) << format;
-        EXPECT_NE(res->get_header_value("Content-Disposition").find("hilbert." + format),
-                  std::string::npos);
+        if (format == "png") {  // the picture, not the Hilbert curve's engraved score
+            EXPECT_EQ(res->body.substr(16, 8), std::string("\0\0\x03\x20\0\0\x03\x20", 8));
+        }
+        EXPECT_EQ(res->get_header_value("Content-Disposition"),
+                  "attachment; filename=\"" + name + "\"");
     }
     json unknown = model(kHilbert);
     unknown["format"] = "../x";
     EXPECT_EQ(post("/api/export", unknown)->status, 400);
+}
+
+TEST_F(StudioServerTest, ObjExportIsAZipOfTheObjAndTheMtlItNames) {
+    json body = model(kHilbert);
+    body["format"] = "obj";
+    const std::string zip = post("/api/export", body)->body;
+    // Each stored entry: its local header, the name, the bytes; the directory follows.
+    std::map<std::string, std::string> files;
+    for (std::size_t at = 0; zip.compare(at, 4, "PK\x03\x04") == 0;) {
+        std::uint32_t size = 0;
+        std::uint16_t nameLength = 0, extra = 0;
+        std::memcpy(&size, zip.data() + at + 18, 4);
+        std::memcpy(&nameLength, zip.data() + at + 26, 2);
+        std::memcpy(&extra, zip.data() + at + 28, 2);
+        const std::string name = zip.substr(at + 30, nameLength);
+        files[name] = zip.substr(at + 30 + nameLength + extra, size);
+        at += 30 + nameLength + extra + size;
+    }
+    ASSERT_EQ(files.size(), 2u);
+    EXPECT_NE(files["hilbert.obj"].find("mtllib hilbert.mtl\n"), std::string::npos);
+    EXPECT_NE(files["hilbert.obj"].find("\nf "), std::string::npos);
+    EXPECT_NE(files["hilbert.mtl"].find("newmtl"), std::string::npos);
+    // The end record counts both entries.
+    const std::size_t end = zip.rfind("PK\x05\x06");
+    ASSERT_NE(end, std::string::npos);
+    EXPECT_EQ(zip[end + 10], 2);
 }
 
 TEST_F(StudioServerTest, ThumbnailIsAPng) {

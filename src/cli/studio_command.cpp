@@ -1,5 +1,6 @@
 // `graftal studio [PATH] [--port N] [--no-open]`: the live editor in the browser. The page
 // comes from share/graftal/studio beside the program (built by `make` from studio/).
+#include <malloc.h>
 #include <pthread.h>
 #include <unistd.h>
 #include <CLI/CLI.hpp>
@@ -56,6 +57,14 @@ int runStudio(const StudioCommandOptions& options) {
     sigaddset(&signals, SIGINT);
     sigaddset(&signals, SIGTERM);
     pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+
+    // Every keystroke allocates and frees buffers of megabytes (a million segments are some
+    // 100 MB). Kept in one heap instead of handed back to the system, they return without
+    // page faults, which on a loaded virtual machine cost more than the turtle itself. The
+    // price: the server keeps the memory of its largest picture until it stops.
+    mallopt(M_ARENA_MAX, 1);  // a buffer freed by one thread serves the next
+    mallopt(M_MMAP_MAX, 0);   // large buffers from the heap too, never mapped one by one
+    mallopt(M_TRIM_THRESHOLD, 1 << 30);
 
     studio::StudioServer studio(server);
     const int port = studio.start(options.port);

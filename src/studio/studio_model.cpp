@@ -1,24 +1,33 @@
 // The studio's computations, each through the library's own calls: parse(), the
-// pipeline's stream decision and derivation options, interpret(), buildMesh() and render().
+// pipeline's stream decision and derivation options, interpret(), buildMeshScene() and
+// render().
 #include "studio/studio_model.hpp"
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
 
+#include "graftal/animation.hpp"
 #include "graftal/bspline.hpp"
 #include "graftal/color_map.hpp"
 #include "graftal/mesh.hpp"
+#include "graftal/mesh_scene.hpp"
+#include "graftal/music.hpp"
 #include "graftal/output.hpp"
+#include "graftal/parser_target.hpp"
 #include "graftal/pipeline.hpp"
 #include "graftal/projection.hpp"
 #include "graftal/streamed_picture.hpp"
 #include "graftal/surface.hpp"
 #include "graftal/turtle.hpp"
+#include "graftal/view_file.hpp"
+#include "lang/source_text.hpp"
+#include "studio/zip_archive.hpp"
 
 namespace graftal::studio {
 
@@ -47,10 +56,7 @@ std::string readAndRemove(const fs::path& path) {
 }
 
 Model parseOrThrow(const ModelInput& input) {
-    ParseOptions options;
-    options.fileName = input.file.string();
-    options.defines = input.defines;
-    ParseResult result = parse(input.text, options);
+    ParseResult result = parseInput(input);
     if (!result.ok()) throw Error(result.errors());
     return std::move(result.model);
 }
@@ -122,6 +128,80 @@ std::uint32_t rgbaBytes(const Rgb& c) {
 
 }  // namespace
 
+fs::path viewFileBeside(const fs::path& modelFile) {
+    std::error_code ec;
+    const fs::path same = fs::path(modelFile).replace_extension(".v");
+    if (fs::is_regular_file(same, ec)) return same;
+    fs::path onlyView;
+    int models = 0, views = 0;
+    for (const auto& e : fs::directory_iterator(modelFile.parent_path(), ec)) {
+        if (!e.is_regular_file(ec)) continue;
+        if (e.path().extension() == ".l") ++models;
+        if (e.path().extension() == ".v") ++views, onlyView = e.path();
+        if (models > 1 || views > 1) return {};
+    }
+    return models == 1 && views == 1 ? onlyView : fs::path();
+}
+
+ParseResult parseInput(const ModelInput& input) {
+    ParseOptions options;
+    options.fileName = input.file.string();
+    options.defines = input.defines;
+    ParseResult result = parse(input.text, options);
+    if (input.viewFile.empty()) return result;
+    DiagnosticList diagnostics;
+    ModelBuilder builder(diagnostics);
+    builder.model() = std::move(result.model);
+    parseViewFileInto(input.viewText, input.viewFile.string(), builder, diagnostics);
+    result.model = std::move(builder.model());
+    for (const Diagnostic& d : diagnostics.items()) result.diagnostics.push_back(d);
+    return result;
+}
+
+std::string pictureKey(const ModelInput& input) {
+    std::string key =
+        input.file.string() + '\n' + (input.steps ? std::to_string(*input.steps) : "-") + '\n';
+    for (const auto& [name, value] : input.defines) key += name + '=' + value + '\n';
+    key += input.viewFile.string() + '\n' + input.viewText + "\n--\n";
+    SourceText source;
+    DiagnosticList diagnostics;
+    if (input.text.find("#include") != std::string::npos ||
+        !prepareSource(input.text, input.file.string(), source, diagnostics)) {
+        static std::atomic<unsigned long> unique{0};
+        return key + std::to_string(unique.fetch_add(1)) + '\n' + input.text;
+    }
+    for (const SourceLine& line : source.lines) {
+        key += std::to_string(line.number) + ':';
+        const std::string& t = line.text;
+        std::size_t i = t.find_first_not_of(" \t\r");
+        if (i == std::string::npos)
+            i = t.size();  // a blank line (a comment's, perhaps)
+        else
+            key.append(t, 0, i);  // leading blanks kept: a line starting with TAB continues
+        bool blank = false;
+        for (; i < t.size(); ++i) {
+            const char c = t[i];
+            if (c == ' ' || c == '\t' || c == '\r') {
+                blank = true;
+                continue;
+            }
+            if (blank) key += ' ';
+            blank = false;
+            const std::size_t end = std::min(skipStringLiteral(t, i), t.size() - 1);
+            key.append(t, i, end - i + 1);  // a string literal keeps its blanks
+            i = end;
+        }
+        key += '\n';
+    }
+    return key;
+}
+
+std::string pictureTag(const std::string& key) {
+    char tag[17];
+    std::snprintf(tag, sizeof tag, "%016zx", std::hash<std::string>{}(key));
+    return tag;
+}
+
 std::vector<NumericDefine> numericDefines(const std::string& text) {
     std::vector<NumericDefine> defines;
     std::istringstream lines(text);
@@ -153,22 +233,21 @@ nlohmann::json diagnosticsJson(const std::vector<Diagnostic>& diagnostics) {
                         {"endLine", d.location.endLine},
                         {"endColumn", d.location.endColumn},
                         {"message", d.message},
+                        {"file", fs::path(d.location.file).filename().string()},
                         {"text", d.toString()}});
     }
     return list;
 }
 
 nlohmann::json parseReport(const ModelInput& input) {
-    ParseOptions options;
-    options.fileName = input.file.string();
-    options.defines = input.defines;
-    const ParseResult result = parse(input.text, options);
+    const ParseResult result = parseInput(input);
     nlohmann::json defines = nlohmann::json::array();
     for (const NumericDefine& d : numericDefines(input.text))
         defines.push_back(
             {{"name", d.name}, {"value", d.value}, {"line", d.line}, {"integer", d.integer}});
     return {{"ok", result.ok()},
             {"diagnostics", diagnosticsJson(result.diagnostics)},
+            {"viewFile", input.viewFile.filename().string()},
             {"defines", defines},
             {"derivationLength", result.model.lsystem.derivationLength},
             {"name", result.model.lsystem.name}};
@@ -212,7 +291,9 @@ StudioPicture derivePicture(const ModelInput& input, const StudioLimits& limits,
     const std::size_t moduleCount = modules.size();
 
     const auto drawStart = Clock::now();
-    Scene scene = interpret(model, applyHomomorphism(model.lsystem, modules, options));
+    Scene scene = model.lsystem.homomorphism.empty()
+                      ? interpret(model, modules)
+                      : interpret(model, applyHomomorphism(model.lsystem, modules, options));
     modules = ModuleString{};
     cancel.check();
     if (int n = model.view.splineSubdivisions; n > 0) scene = smoothSegments(scene, n);
@@ -353,37 +434,82 @@ std::string meshGlb(const StudioPicture& picture, const fs::path& scratch) {
         const double extent = std::max({b.max.x - b.min.x, b.max.y - b.min.y, b.max.z - b.min.z});
         options.minimumRadius = 0.5 * extent / 500.0;
     }
-    const Mesh mesh = buildMesh(scene, options, &surfaces);
+    // Repeated organs (leaves, flowers) once each, placed by EXT_mesh_gpu_instancing, the
+    // buffers compressed by EXT_meshopt_compression: the page's loader reads both.
+    options.instancing = true;
+    const MeshScene mesh = buildMeshScene(scene, options, &surfaces);
     const fs::path glb = scratchFile(scratch, "glb");
-    writeGlb(mesh, glb);
+    writeGlb(mesh, glb, GlbOptions{.instancing = true, .compression = true});
     return readAndRemove(glb);
 }
 
-std::string exportFile(const ModelInput& input, const std::string& extension,
-                       const StudioLimits& limits, const CancellationToken& cancel,
-                       const fs::path& scratch) {
+const std::vector<std::string>& exportFormats() {
+    static const std::vector<std::string> formats = {"png", "svg",      "pdf",  "glb", "obj",
+                                                     "ply", "gif",      "webp", "mp4", "mid",
+                                                     "wav", "musicxml", "ly"};
+    return formats;
+}
+
+ExportedFile exportFile(const ModelInput& input, const std::string& format,
+                        const StudioLimits& limits, const CancellationToken& cancel,
+                        const fs::path& scratch) {
+    const auto& formats = exportFormats();
+    if (std::find(formats.begin(), formats.end(), format) == formats.end())
+        throw Error(SourceLocation{"studio", 0, 0}, "unknown export format '" + format + "'");
     const Model model = parseOrThrow(input);
+    const std::string stem = input.file.stem().string();
+    const fs::path output = scratchFile(scratch, format);
+    const DeriveRequest derive = deriveRequest(input, limits, cancel);
+    const int steps = checkedSteps(model, derive, limits);
+
+    auto oneOf = [&](std::initializer_list<const char*> list) {
+        return std::any_of(list.begin(), list.end(), [&](const char* f) { return format == f; });
+    };
+    if (oneOf({"gif", "webp", "mp4"})) {
+        // graftal animate: every step from 0 to the slider's, one fixed camera.
+        AnimationRequest request;
+        static_cast<DeriveRequest&>(request) = derive;
+        request.steps = steps;
+        request.output = output;
+        request.sourceFile = input.file;
+        checkAnimationRequest(request);
+        writeAnimationFile(model, request);
+        return {stem + "." + format, readAndRemove(output)};
+    }
+    if (oneOf({"mid", "wav", "musicxml", "ly"})) {  // not png, svg, pdf: those are pictures
+        // graftal music: the curve at the slider's step, the file's `music` settings.
+        const Score score = scoreFromModel(model, steps, musicOptions(model.view),
+                                           derivationOptions(model, derive));
+        cancel.check();
+        writeScore(score, output);
+        return {stem + "." + format, readAndRemove(output)};
+    }
     RenderRequest request;
-    static_cast<DeriveRequest&>(request) = deriveRequest(input, limits, cancel);
-    checkedSteps(model, request, limits);
-    request.output = scratchFile(scratch, extension);
+    static_cast<DeriveRequest&>(request) = derive;
+    request.output = output;
     request.sourceFile = input.file;
     checkRenderRequest(request);
     render(model, request);
-    if (extension == "obj") {
-        std::error_code ec;
-        fs::remove(fs::path(request.output).replace_extension(".mtl"), ec);
-    }
-    return readAndRemove(request.output);
+    if (format != "obj") return {stem + "." + format, readAndRemove(output)};
+    // The OBJ names its material library by file name: both go in one archive, renamed
+    // after the model, so that they unpack side by side.
+    std::string obj = readAndRemove(output);
+    const std::string mtl = readAndRemove(fs::path(output).replace_extension(".mtl"));
+    const std::string scratchName = "mtllib " + output.stem().string() + ".mtl";
+    if (const auto at = obj.find(scratchName); at != std::string::npos)
+        obj.replace(at, scratchName.size(), "mtllib " + stem + ".mtl");
+    return {stem + "-obj.zip", storedZip({{stem + ".obj", obj}, {stem + ".mtl", mtl}})};
 }
 
-std::string thumbnailPng(const fs::path& file, int size, const StudioLimits& limits,
-                         const fs::path& scratch) {
-    ParseResult parsed = loadModel(file);
+std::string thumbnailPng(const fs::path& file, const fs::path& viewFile, int size,
+                         const StudioLimits& limits, const fs::path& scratch) {
+    ParseOptions options;
+    options.viewFile = viewFile.string();
+    ParseResult parsed = loadModel(file, options);
     if (!parsed.ok()) throw Error(parsed.errors());
     RenderRequest request;
     static_cast<DeriveRequest&>(request) =
-        deriveRequest(ModelInput{{}, file, std::nullopt, {}}, limits, CancellationToken{});
+        deriveRequest(ModelInput{{}, file, std::nullopt, {}, {}, {}}, limits, CancellationToken{});
     checkedSteps(parsed.model, request, limits);
     request.output = scratchFile(scratch, "png");
     request.picture.width = request.picture.height = size;

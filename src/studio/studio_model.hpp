@@ -38,7 +38,19 @@ struct ModelInput {
     std::filesystem::path file;  // absolute; names in diagnostics, surfaces beside it
     std::optional<int> steps;    // empty: the file's derivation length
     std::map<std::string, std::string> defines;
+    // The view file applied after the text (as `graftal render model.l model.v`), and its
+    // text read when the request came: empty for none.
+    std::filesystem::path viewFile;
+    std::string viewText;
 };
+
+// The view file the studio applies to a model file: NAME.v beside NAME.l, else the one .v
+// of a model folder (a folder with one .l and one .v, as vlab lays models out). Empty for
+// none.
+std::filesystem::path viewFileBeside(const std::filesystem::path& modelFile);
+
+// The text parsed, then its view file's settings applied over it (loadModel's order).
+ParseResult parseInput(const ModelInput& input);
 
 // A `#define NAME number` line of the text, for a slider.
 struct NumericDefine {
@@ -49,7 +61,17 @@ struct NumericDefine {
 };
 std::vector<NumericDefine> numericDefines(const std::string& text);
 
+// Diagnostics as the page shows them, each with its file's name (the page underlines those
+// of the file it edits and lists those of its view file).
 nlohmann::json diagnosticsJson(const std::vector<Diagnostic>& diagnostics);
+
+// What decides the picture: the file, steps and overrides, and the text with its comments
+// blanked (as the parser blanks them) and runs of blanks made one. An edit in a comment or
+// in spacing keeps the key, and the picture already made is reused. A text that includes
+// other files gets a key of its own every time (the included files may have changed).
+std::string pictureKey(const ModelInput& input);
+// A short tag of a key, for the page to say which picture it shows.
+std::string pictureTag(const std::string& key);
 
 // {ok, diagnostics, defines, derivationLength, name}: never throws for bad text.
 nlohmann::json parseReport(const ModelInput& input);
@@ -63,6 +85,7 @@ struct StudioPicture {
     std::string stringHead;  // the first modules of the derived string
     std::vector<std::string> notes;
     nlohmann::json stats;  // modules, segments, polygons, bbox, deriveMs, drawMs, is3D
+    std::string lines;     // encodeLines(scene), made once and sent again while unchanged
 };
 
 // Parses, derives and interprets. Throws Error (with every parse error), Cancelled when
@@ -76,17 +99,32 @@ StudioPicture derivePicture(const ModelInput& input, const StudioLimits& limits,
 // triangles (9 floats each) with their RGBA colours.
 std::string encodeLines(const Scene& scene);
 
-// The picture's mesh (stems as tubes, polygons, surfaces) as glTF binary.
+// The picture's mesh (stems as tubes, polygons, surfaces) as glTF binary: repeated organs
+// instanced (EXT_mesh_gpu_instancing) and the buffers compressed (EXT_meshopt_compression)
+// as far as writeGlb(MeshScene) does so.
 std::string meshGlb(const StudioPicture& picture, const std::filesystem::path& scratch);
 
-// The model rendered by render() to a file of `extension` (png, svg, pdf, glb, obj, ply);
-// its bytes.
-std::string exportFile(const ModelInput& input, const std::string& extension,
-                       const StudioLimits& limits, const CancellationToken& cancel,
-                       const std::filesystem::path& scratch);
+// A download: its file name and bytes.
+struct ExportedFile {
+    std::string fileName;
+    std::string bytes;
+};
+
+// The formats the page exports, each through the library call the command line makes:
+// pictures and 3D files by render() (png svg pdf glb ply; obj comes as a .zip holding the
+// OBJ and its .mtl), animations by writeAnimationFile() (gif webp mp4, as graftal animate)
+// and music by writeScore() (mid wav musicxml ly, as graftal music).
+const std::vector<std::string>& exportFormats();
+
+// The model exported as `format` (one of exportFormats(); anything else throws Error).
+ExportedFile exportFile(const ModelInput& input, const std::string& format,
+                        const StudioLimits& limits, const CancellationToken& cancel,
+                        const std::filesystem::path& scratch);
 
 // A small PNG of a model file as render() draws it.
-std::string thumbnailPng(const std::filesystem::path& file, int size, const StudioLimits& limits,
+// `viewFile` (perhaps empty) is applied as the live view applies it.
+std::string thumbnailPng(const std::filesystem::path& file, const std::filesystem::path& viewFile,
+                         int size, const StudioLimits& limits,
                          const std::filesystem::path& scratch);
 
 }  // namespace graftal::studio

@@ -69,7 +69,10 @@ fs::path StudioRoot::resolve(std::string_view relative, bool mustExist) const {
         if (part == "..") throw PathRefused("'" + text + "': '..' is refused");
     if (!isModelFile(rel))
         throw PathRefused("'" + text + "': the studio reads and writes only .l and .v files");
-    if (!onlyFile_.empty() && rel.lexically_normal().string() != onlyFile_)
+    // Started on one file: that file, and its view file (the same name, .v).
+    const std::string normal = rel.lexically_normal().string();
+    if (!onlyFile_.empty() && normal != onlyFile_ &&
+        normal != fs::path(onlyFile_).replace_extension(".v").string())
         throw PathRefused("'" + text + "': the studio was started on " + onlyFile_ + " alone");
 
     const fs::path joined = folder_ / rel;

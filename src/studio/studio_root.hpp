@@ -27,7 +27,8 @@ struct ListedFile {
 
 class StudioRoot {
   public:
-    // `path` is a folder (every .l file below it) or one .l file (that file alone).
+    // `path` is a folder (every .l file below it) or one .l file (that file alone, and the
+    // view file of its name, NAME.v).
     // Throws Error when it does not exist.
     explicit StudioRoot(const std::filesystem::path& path);
 

@@ -67,12 +67,40 @@ bool isIdentifier(const std::string& s) {
     return !std::isdigit(static_cast<unsigned char>(s[0]));
 }
 
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+        .count();
+}
+
+// Counts the derivations the page waits for while it lives; thumbnails wait for none.
+class LiveRequest {
+  public:
+    explicit LiveRequest(std::atomic<int>& count) : count_(count) { ++count_; }
+    ~LiveRequest() { --count_; }
+    LiveRequest(const LiveRequest&) = delete;
+    LiveRequest& operator=(const LiveRequest&) = delete;
+
+  private:
+    std::atomic<int>& count_;
+};
+
 const char* contentTypeFor(const std::string& extension) {
-    if (extension == "png") return "image/png";
-    if (extension == "svg") return "image/svg+xml; charset=utf-8";
-    if (extension == "pdf") return "application/pdf";
-    if (extension == "glb") return "model/gltf-binary";
-    return "application/octet-stream";
+    static const std::map<std::string, const char*> types = {
+        {".png", "image/png"},
+        {".svg", "image/svg+xml; charset=utf-8"},
+        {".pdf", "application/pdf"},
+        {".glb", "model/gltf-binary"},
+        {".ply", "application/octet-stream"},
+        {".zip", "application/zip"},
+        {".gif", "image/gif"},
+        {".webp", "image/webp"},
+        {".mp4", "video/mp4"},
+        {".mid", "audio/midi"},
+        {".wav", "audio/wav"},
+        {".musicxml", "application/vnd.recordare.musicxml+xml"},
+        {".ly", "text/x-lilypond; charset=utf-8"}};
+    const auto it = types.find(extension);
+    return it == types.end() ? "application/octet-stream" : it->second;
 }
 
 }  // namespace
@@ -85,6 +113,7 @@ struct StudioServer::Impl {
     std::thread thread;
     StudioSessions sessions;
     std::atomic<bool> stopping{false};
+    std::atomic<int> liveRequests{0};  // derivations for the live view under way
     int port = 0;
     std::mutex thumbnailMutex;  // one thumbnail at a time: the live view comes first
     std::map<std::string, std::pair<std::int64_t, std::string>> thumbnails;
@@ -136,6 +165,9 @@ struct StudioServer::Impl {
             input.file = root.resolve(body["path"].get<std::string>(), false);
         else
             input.file = root.folder() / "untitled.l";
+        // Its view file, when the root lets the studio read it.
+        input.viewFile = viewFileOf(input.file);
+        if (!input.viewFile.empty()) input.viewText = readFile(input.viewFile);
         if (body.contains("steps") && !body["steps"].is_null()) {
             if (!body["steps"].is_number_integer())
                 throw BadRequest("\"steps\" must be a whole number");
@@ -158,11 +190,15 @@ struct StudioServer::Impl {
         return input;
     }
 
-    static std::string inputKey(const ModelInput& input) {
-        std::string key =
-            input.file.string() + '\n' + (input.steps ? std::to_string(*input.steps) : "-") + '\n';
-        for (const auto& [name, value] : input.defines) key += name + '=' + value + '\n';
-        return key + input.text;
+    // The view file of a model file inside the root (empty when none or refused).
+    fs::path viewFileOf(const fs::path& file) const {
+        const fs::path view = viewFileBeside(file);
+        if (view.empty()) return {};
+        try {
+            return root.resolve(view.lexically_relative(root.folder()).generic_string(), true);
+        } catch (const PathRefused&) {
+            return {};
+        }
     }
 
     static std::string sessionOf(const json& body) {
@@ -207,7 +243,7 @@ struct StudioServer::Impl {
         server.Get("/api/info", guarded([this](const httplib::Request&, httplib::Response& res) {
                        sendJson(res, {{"root", root.folder().string()},
                                       {"onlyFile", root.onlyFile()},
-                                      {"formats", {"png", "svg", "pdf", "glb", "obj", "ply"}},
+                                      {"formats", exportFormats()},
                                       {"limits",
                                        {{"bodyBytes", options.limits.bodyBytes},
                                         {"segmentBudget", options.limits.segmentBudget},
@@ -263,33 +299,47 @@ struct StudioServer::Impl {
                     }));
 
         // Metadata and geometry in one answer: a 4-byte JSON length, the JSON, padding to
-        // a multiple of 4, then the line buffer (encodeLines) or a summarised PNG.
+        // a multiple of 4, then the line buffer (encodeLines) or a summarised PNG. A
+        // request whose picture key is the session's last one reuses that picture; when the
+        // page says it shows it already (`have`: its tag) the answer carries no geometry.
         server.Post("/api/derive",
                     guarded([this](const httplib::Request& req, httplib::Response& res) {
                         const auto received = std::chrono::steady_clock::now();
                         const json body = parseBody(req);
                         const ModelInput input = modelInput(body);
                         const std::string session = sessionOf(body);
+                        const std::string key = pictureKey(input);
+                        const std::string tag = pictureTag(key);
                         const CancellationToken token = sessions.begin(session);
-                        auto picture = std::make_shared<StudioPicture>(
-                            derivePicture(input, options.limits, token, scratch));
+                        std::shared_ptr<const StudioPicture> picture = sessions.kept(session, key);
+                        const bool reused = picture != nullptr;
+                        const bool unchanged = reused && body.value("have", "") == tag;
+                        double encodeMs = 0;
+                        if (!picture) {
+                            LiveRequest live(liveRequests);
+                            auto made = std::make_shared<StudioPicture>(
+                                derivePicture(input, options.limits, token, scratch));
+                            const auto encodeStart = std::chrono::steady_clock::now();
+                            if (made->summaryPng.empty()) made->lines = encodeLines(made->scene);
+                            encodeMs = millisecondsSince(encodeStart);
+                            picture = made;
+                            sessions.keep(session, key, picture);
+                        }
                         const bool summarised = !picture->summaryPng.empty();
-                        const auto encodeStart = std::chrono::steady_clock::now();
-                        const std::string geometry =
-                            summarised ? picture->summaryPng : encodeLines(picture->scene);
                         json stats = picture->stats;
-                        stats["encodeMs"] = std::chrono::duration<double, std::milli>(
-                                                std::chrono::steady_clock::now() - encodeStart)
-                                                .count();
-                        stats["serverMs"] = std::chrono::duration<double, std::milli>(
-                                                std::chrono::steady_clock::now() - received)
-                                                .count();
+                        stats["encodeMs"] = encodeMs;
+                        stats["reused"] = reused;
+                        stats["serverMs"] = millisecondsSince(received);
                         json meta = {
                             {"stats", stats},
                             {"steps", picture->steps},
-                            {"string", picture->stringHead},
+                            {"tag", tag},
+                            {"unchanged", unchanged},
+                            {"string", unchanged ? std::string() : picture->stringHead},
                             {"notes", picture->notes},
-                            {"geometry", summarised ? "png" : "lines"},
+                            {"geometry", unchanged    ? "none"
+                                         : summarised ? "png"
+                                                      : "lines"},
                             {"meshAvailable", !summarised && picture->scene.segments.size() <=
                                                                  options.limits.meshSegmentBudget}};
                         std::string out(4, '\0');
@@ -298,8 +348,7 @@ struct StudioServer::Impl {
                         std::memcpy(out.data(), &length, 4);
                         out += metaText;
                         out.append((4 - out.size() % 4) % 4, ' ');
-                        out += geometry;
-                        sessions.keep(session, inputKey(input), std::move(picture));
+                        if (!unchanged) out += summarised ? picture->summaryPng : picture->lines;
                         res.set_content(std::move(out), "application/octet-stream");
                     }));
 
@@ -310,9 +359,10 @@ struct StudioServer::Impl {
                         const ModelInput input = modelInput(body);
                         const std::string session = sessionOf(body);
                         std::shared_ptr<const StudioPicture> picture =
-                            sessions.kept(session, inputKey(input));
+                            sessions.kept(session, pictureKey(input));
                         if (!picture) {
                             const CancellationToken token = sessions.begin(session);
+                            LiveRequest live(liveRequests);
                             picture = std::make_shared<StudioPicture>(
                                 derivePicture(input, options.limits, token, scratch));
                         }
@@ -332,16 +382,15 @@ struct StudioServer::Impl {
                 const json body = parseBody(req);
                 const ModelInput input = modelInput(body);
                 const std::string format = body.value("format", "");
-                const bool word = !format.empty() && format.size() < 8 &&
-                                  std::all_of(format.begin(), format.end(),
-                                              [](char c) { return c >= 'a' && c <= 'z'; });
-                if (!word || !fileFormatFor("x." + format))
-                    throw BadRequest("unknown export format '" + format + "'");
+                const auto& formats = exportFormats();
+                if (std::find(formats.begin(), formats.end(), format) == formats.end())
+                    throw BadRequest("unknown export format '" + format.substr(0, 20) + "'");
                 const CancellationToken token = sessions.begin(sessionOf(body) + "/export");
-                std::string bytes = exportFile(input, format, options.limits, token, scratch);
-                const std::string name = input.file.stem().string() + "." + format;
-                res.set_header("Content-Disposition", "attachment; filename=\"" + name + "\"");
-                res.set_content(std::move(bytes), contentTypeFor(format));
+                ExportedFile file = exportFile(input, format, options.limits, token, scratch);
+                res.set_header("Content-Disposition",
+                               "attachment; filename=\"" + file.fileName + "\"");
+                res.set_content(std::move(file.bytes),
+                                contentTypeFor(fs::path(file.fileName).extension().string()));
             }));
 
         server.Get("/api/thumbnail",
@@ -350,13 +399,17 @@ struct StudioServer::Impl {
                        const fs::path path = root.resolve(rel, true);
                        const std::int64_t mtime = modificationTime(path);
                        std::lock_guard lock(thumbnailMutex);
+                       // The live view first: a thumbnail waits (a while) for its derivations.
+                       for (int i = 0; i < 200 && liveRequests > 0 && !stopping; ++i)
+                           std::this_thread::sleep_for(std::chrono::milliseconds(50));
                        auto it = thumbnails.find(rel);
                        if (it == thumbnails.end() || it->second.first != mtime) {
                            StudioLimits limits = options.limits;
                            limits.memoryLimit =
                                std::min<std::size_t>(limits.memoryLimit, std::size_t(256) << 20);
                            limits.deriveSeconds = 20;
-                           thumbnails[rel] = {mtime, thumbnailPng(path, 160, limits, scratch)};
+                           thumbnails[rel] = {
+                               mtime, thumbnailPng(path, viewFileOf(path), 160, limits, scratch)};
                            it = thumbnails.find(rel);
                        }
                        res.set_header("Cache-Control", "no-cache");

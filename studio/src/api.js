@@ -47,15 +47,17 @@ export async function parse(model) {
   return (await post('/api/parse', model)).json();
 }
 
-// {meta, lines} or {meta, png}.
+// {meta, lines} or {meta, png}; only {meta} when meta.unchanged (the page has the picture).
 export async function derive(model) {
   const buffer = await (await post('/api/derive', model)).arrayBuffer();
   const length = new DataView(buffer).getUint32(0, true);
   const meta = JSON.parse(new TextDecoder().decode(new Uint8Array(buffer, 4, length)));
   let start = 4 + length;
   start += (4 - (start % 4)) % 4;
-  if (meta.geometry === 'png') return { meta, png: new Blob([buffer.slice(start)], { type: 'image/png' }) };
-  return { meta, lines: decodeLines(buffer, start) };
+  const bytes = buffer.byteLength;
+  if (meta.geometry === 'none') return { meta, bytes };
+  if (meta.geometry === 'png') return { meta, bytes, png: new Blob([buffer.slice(start)], { type: 'image/png' }) };
+  return { meta, bytes, lines: decodeLines(buffer, start) };
 }
 
 // The line buffer (docs/studio.md): header (magic, segments, triangles, flags; bounds,
@@ -101,7 +103,9 @@ export async function mesh(model) {
   return (await post('/api/mesh', model)).arrayBuffer();
 }
 
+// {blob, name}: the name the server gives the download (an OBJ comes as NAME-obj.zip).
 export async function exportFile(model, format) {
   const res = await post('/api/export', { ...model, format });
-  return res.blob();
+  const name = /filename="([^"]+)"/.exec(res.headers.get('Content-Disposition') || '')?.[1];
+  return { blob: await res.blob(), name };
 }

@@ -3,9 +3,16 @@
 // never hold up the live view.
 const queue = [];
 let loading = false;
+let held = 0;  // derivations of the live view under way: thumbnails wait for them
+
+// +1 when the live view asks for a picture, -1 when it has it.
+export function holdThumbnails(change) {
+  held = Math.max(0, held + change);
+  next();
+}
 
 function next() {
-  if (loading || !queue.length) return;
+  if (loading || held > 0 || !queue.length) return;
   loading = true;
   const img = queue.shift();
   img.onload = () => { loading = false; next(); };

@@ -7,7 +7,7 @@ import * as api from './api.js';
 import { lsystemLanguage } from './lsystem_language.js';
 import { View2D } from './view2d.js';
 import { View3D } from './view3d.js';
-import { showFiles, markCurrent, refreshThumbnail } from './files_panel.js';
+import { showFiles, markCurrent, refreshThumbnail, holdThumbnails } from './files_panel.js';
 import { showDefines, writeBackChanges } from './defines_panel.js';
 
 const $ = (id) => document.getElementById(id);
@@ -15,7 +15,7 @@ const $ = (id) => document.getElementById(id);
 const state = {
   path: null, mtime: 0, savedText: '', steps: null, derivationLength: 0,
   overrides: {}, defines: [], view: '2d', last: null, seq: 0, shown: 0, string: '',
-  saveTimer: 0, loading: false, fitNext: true,
+  saveTimer: 0, loading: false, fitNext: true, shownTag: '',
 };
 // What the browser tests read: the number of pictures shown and the time from an edit
 // (or a slider move) to its picture.
@@ -58,14 +58,19 @@ function toEditorDiagnostic(d) {
   return { from, to: Math.max(to, from), severity, message: d.message };
 }
 
+// A diagnostic of another file (the view file applied to the model) is listed, not
+// underlined in the editor.
+const editedName = () => (state.path || 'untitled.l').split('/').pop();
+const ofOtherFile = (d) => d.file && d.file !== editedName();
+
 function showDiagnostics(list) {
   const shown = list.filter((d) => d.severity !== 'note' || d.line > 0);
-  editor.dispatch(setDiagnostics(editor.state, shown.map(toEditorDiagnostic)));
+  editor.dispatch(setDiagnostics(editor.state, shown.filter((d) => !ofOtherFile(d)).map(toEditorDiagnostic)));
   $('problems').replaceChildren(...shown.map((d) => {
     const div = document.createElement('div');
     div.className = 'problem';
     div.dataset.line = d.line;
-    div.textContent = `${d.line}:${d.column}: ${d.severity}: ${d.message}`;
+    div.textContent = `${ofOtherFile(d) ? d.file + ':' : ''}${d.line}:${d.column}: ${d.severity}: ${d.message}`;
     return div;
   }));
 }
@@ -76,26 +81,33 @@ function refresh() {
   const seq = ++state.seq;
   const started = performance.now();
   const body = modelBody();
+  holdThumbnails(+1);
   api.parse(body).then((report) => {
     if (seq !== state.seq) return;
     if (report.ok || report.diagnostics.length) showDiagnostics(report.diagnostics);
     state.derivationLength = report.derivationLength;
+    $('view-file').textContent = report.viewFile ? `with ${report.viewFile}` : '';
     updateStepSlider();
     state.defines = report.defines;
     showDefines(report.defines, state, { changed: refresh, writeBack });
   }).catch(() => {});
-  return api.derive(body).then(async (result) => {
+  return api.derive({ ...body, have: state.shownTag }).then(async (result) => {
     if (seq < state.shown) return;
     state.shown = seq;
-    state.last = result;
     const arrived = performance.now();
-    await showPicture(result);
+    // The same picture as shown (an edit in a comment): nothing to draw.
+    if (!result.meta.unchanged) {
+      state.last = result;
+      state.shownTag = result.meta.tag;
+      await showPicture(result);
+    }
     studio.pictures += 1;
     const done = performance.now();
     studio.timings.push({
       seq, ms: done - started, fetchMs: arrived - started, drawMs: done - arrived,
       serverMs: result.meta.stats.serverMs, deriveMs: result.meta.stats.deriveMs, turtleMs: result.meta.stats.drawMs,
-      segments: result.meta.stats.segments,
+      encodeMs: result.meta.stats.encodeMs, segments: result.meta.stats.segments, bytes: result.bytes,
+      unchanged: result.meta.unchanged,
     });
     $('views').classList.remove('stale');
   }).catch((e) => {
@@ -104,7 +116,7 @@ function refresh() {
     $('views').classList.add('stale');
     $('note').textContent = e.message;
     if (e.diagnostics?.length) showDiagnostics(e.diagnostics);
-  });
+  }).finally(() => holdThumbnails(-1));
 }
 
 async function showPicture({ meta, lines, png }) {
@@ -310,23 +322,29 @@ for (const button of document.querySelectorAll('#view-tabs [data-view]')) {
 }
 $('fit').addEventListener('click', () => { view2d.resetView(); if (view3d.renderer) { view3d.fit(); view3d.render(); } });
 
-for (const button of document.querySelectorAll('#exports [data-format]')) {
-  button.addEventListener('click', async () => {
-    const format = button.dataset.format;
-    try {
-      const blob = await api.exportFile(modelBody(), format);
-      const a = document.createElement('a');
-      a.href = URL.createObjectURL(blob);
-      a.download = (state.path || 'untitled.l').split('/').pop().replace(/\.l$/, '') + '.' + format;
-      document.body.append(a);
-      a.click();
-      a.remove();
-      setTimeout(() => URL.revokeObjectURL(a.href), 10000);
-    } catch (e) {
-      $('note').textContent = `export ${format}: ${e.message}`;
-    }
-  });
+async function exportAs(format) {
+  $('note').textContent = `exporting ${format}…`;
+  try {
+    const { blob, name } = await api.exportFile(modelBody(), format);
+    const a = document.createElement('a');
+    a.href = URL.createObjectURL(blob);
+    a.download = name || (state.path || 'untitled.l').split('/').pop().replace(/\.l$/, '') + '.' + format;
+    document.body.append(a);
+    a.click();
+    a.remove();
+    setTimeout(() => URL.revokeObjectURL(a.href), 10000);
+    $('note').textContent = '';
+  } catch (e) {
+    $('note').textContent = `export ${format}: ${e.message}`;
+  }
 }
+for (const button of document.querySelectorAll('#exports [data-format]'))
+  button.addEventListener('click', () => exportAs(button.dataset.format));
+$('export-more').addEventListener('change', (e) => {
+  const format = e.target.value;
+  e.target.value = '';
+  if (format) exportAs(format);
+});
 
 window.addEventListener('beforeunload', () => { if (text() !== state.savedText) saveNow(); });
 

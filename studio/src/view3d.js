@@ -1,9 +1,11 @@
 // The 3D view: three.js with a perspective camera, orbit controls and lights. Meshes come
-// from the server as glTF binary (stems as tubes, leaves and patches as triangles); models
+// from the server as glTF binary (stems as tubes, leaves and patches as triangles, repeated
+// organs instanced, buffers perhaps meshopt-compressed); models
 // over the mesh budget are drawn as coloured line segments from the 2D view's buffer.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+import { MeshoptDecoder } from 'three/addons/libs/meshopt_decoder.module.js';
 import { segmentPoints } from './api.js';
 
 export class View3D {
@@ -76,7 +78,10 @@ export class View3D {
 
   async showGlb(buffer, fit) {
     this.init();
-    const gltf = await new GLTFLoader().parseAsync(buffer, '');
+    // Instanced organs (EXT_mesh_gpu_instancing) come as InstancedMeshes; compressed
+    // buffers (EXT_meshopt_compression) are decoded by the bundled decoder.
+    if (!this.loader) this.loader = new GLTFLoader().setMeshoptDecoder(MeshoptDecoder);
+    const gltf = await this.loader.parseAsync(buffer, '');
     gltf.scene.traverse((o) => { if (o.material) o.material.side = THREE.DoubleSide; });
     this.replace(gltf.scene, fit);
   }
