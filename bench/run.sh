@@ -186,6 +186,17 @@ print("bench: 3D turtle %.3f s + mesh %.3f s for %d segments: %.1f M segments/s,
     fi
 fi
 
+if wanted map17; then
+    # Map L-systems (docs/maps.md): Fig 5.2's layer at n=17, 131,072 cells, derived and
+    # relaxed (every step settled, the outline grown) on one thread and on two.
+    for t in 1 2; do
+        say "bench: graftal map L-system fig5.2 n=17 relaxed, $t thread(s)"
+        measure "map17t$t.graftal" "$RUNS" "$BUDGET" 600 \
+            "$graftal" stats "$root/examples/fig5.2-cell-layer.l" -n 17 --map-geometry relaxed \
+            --threads "$t"
+    done
+fi
+
 # ---- lindenmayer -------------------------------------------------------------------------
 peer_rows=("koch8|koch|8" "abop16|abop124d|16" "hogeweg70|hogeweg|70" "honda23|honda|23"
            "interp8|koch|8|--interpret")
@@ -203,6 +214,8 @@ done
 # Koch n=11 has 6.4e10 modules: past the 2^29 - 24 characters a V8 string can hold.
 echo "n/a (JS strings stop at 2^29 − 24 symbols)" >"$results/stream11.peer.unavailable"
 
+echo "no map L-systems" >"$results/map17t1.peer.unavailable"
+echo "no map L-systems" >"$results/map17t2.peer.unavailable"
 # The parametric rows beyond Honda's are not written for the peer.
 for key in honda23d pcond22 pctx20 pblocks20; do
     echo "not written for the peer" >"$results/$key.peer.unavailable"

@@ -1,6 +1,9 @@
 // graftal derive, stats and render on map L-system files: picked by their first line.
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+
+#include <cstdlib>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -95,5 +98,70 @@ TEST(MapCli, BadInputNamesFileLineAndColumnAndWritesNothing) {
     EXPECT_EQ(r.status, 1);
     EXPECT_NE(r.err.find("--map-geometry 'round': expected siero, relaxed or spline"),
               std::string::npos)
+        << r.err;
+}
+
+namespace {
+
+// graftal ARGS < input: status, standard output and standard error.
+graftal::testing::RunResult runWithInput(const std::string& args, const fs::path& input) {
+    TempDir t;
+    const auto out = t.path() / "out", err = t.path() / "err";
+    const std::string cmd = std::string(GRAFTAL_EXE) + " " + args + " < " + input.string() + " > " +
+                            out.string() + " 2> " + err.string();
+    const int raw = std::system(cmd.c_str());
+    graftal::testing::RunResult r;
+    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
+    r.out = graftal::testing::readFile(out);
+    r.err = graftal::testing::readFile(err);
+    return r;
+}
+
+}  // namespace
+
+TEST(MapCli, DashReadsAMapFromStandardInputAndWritesToStandardOutput) {
+    TempDir t;
+    const fs::path square = example("fig5.1-square-map.l");
+    auto fromFile = runGraftal("derive " + square.string() + " -n 2");
+    auto r = runWithInput("derive - -n 2", square);
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.out, fromFile.out);
+    r = runWithInput("stats - --map-geometry relaxed", square);
+    ASSERT_EQ(r.status, 0) << r.err;
+    auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["file"], "<stdin>");
+    EXPECT_EQ(j["cells"], 16);
+    const fs::path svg = t.path() / "square.svg";
+    r = runWithInput("render - -o " + svg.string(), square);
+    ASSERT_EQ(r.status, 0) << r.err;
+    const std::string picture = graftal::testing::readFile(svg);
+    EXPECT_NE(picture.find("<svg"), std::string::npos);
+    // -o -: the same picture on standard output.
+    r = runGraftal("render " + square.string() + " -o -");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.out, picture);
+    r = runWithInput("render - -o - --format png", square);
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.out.substr(1, 3), "PNG");
+    auto bad = t.write("bad.l", "map L-system:\naxiom: ab\na --> a[+bb]a\nb --> b\n");
+    r = runWithInput("derive -", bad);
+    EXPECT_EQ(r.status, 1);
+    EXPECT_EQ(r.err.rfind("<stdin>:3:11: error: a branch is one edge", 0), 0u) << r.err;
+}
+
+TEST(MapCli, TheOutlineRuleIsChosenByName) {
+    auto growing = runGraftal("stats " + example("fig5.2-cell-layer.l") +
+                              " --map-geometry relaxed --map-outline growing");
+    auto polygon = runGraftal("stats " + example("fig5.2-cell-layer.l") +
+                              " --map-geometry relaxed --map-outline polygon");
+    ASSERT_EQ(growing.status, 0) << growing.err;
+    ASSERT_EQ(polygon.status, 0) << polygon.err;
+    // The polygon keeps the axiom's triangle, its top corner at (0, 1).
+    EXPECT_NEAR(nlohmann::json::parse(polygon.out)["bbox"]["max"][1].get<double>(), 1.0, 1e-12);
+    EXPECT_NE(nlohmann::json::parse(growing.out)["bbox"],
+              nlohmann::json::parse(polygon.out)["bbox"]);
+    auto r = runGraftal("stats " + example("fig5.2-cell-layer.l") + " --map-outline round");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("--map-outline 'round': expected growing or polygon"), std::string::npos)
         << r.err;
 }

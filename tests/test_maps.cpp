@@ -295,9 +295,38 @@ TEST(MapGeometry, SieroVerticesStayWhereTheyWereBorn) {
     EXPECT_TRUE(twoThirds);
 }
 
-TEST(MapGeometry, RelaxedMapsHaveNoCrossingWallsAndKeepTheirOutline) {
+// Every interior vertex of `m` at the centre of gravity of its neighbours, within `tolerance`.
+void expectInteriorSettled(const PlaneMap& m, double tolerance) {
+    std::vector<Vec3> sum(m.vertexCount(), Vec3{0, 0, 0});
+    std::vector<int> degree(m.vertexCount(), 0);
+    for (std::size_t e = 0; e < m.edgeCount(); ++e) {
+        sum[m.tail[e]] = sum[m.tail[e]] + m.position[m.head[e]];
+        sum[m.head[e]] = sum[m.head[e]] + m.position[m.tail[e]];
+        ++degree[m.tail[e]];
+        ++degree[m.head[e]];
+    }
+    for (std::size_t v = 0; v < m.vertexCount(); ++v) {
+        if (m.vertexSide[v] != kNotOnOutline) continue;
+        const Vec3 c = sum[v] * (1.0 / degree[v]);
+        ASSERT_NEAR(c.x, m.position[v].x, tolerance) << "vertex " << v;
+        ASSERT_NEAR(c.y, m.position[v].y, tolerance) << "vertex " << v;
+    }
+}
+
+// The area inside the outline (the outside region's walk runs clockwise around the layer).
+double layerArea(const PlaneMap& m) {
+    double twice = 0;
+    for (std::uint32_t h : m.boundary(kOutside)) {
+        const Vec3 a = m.position[m.origin(h)], b = m.position[m.target(h)];
+        twice += a.x * b.y - a.y * b.x;
+    }
+    return -twice / 2;
+}
+
+TEST(MapGeometry, RelaxedMapsWithThePolygonOutlineKeepTheAxiomsPolygon) {
     MapDerivationOptions o;
     o.geometry = MapGeometry::Relaxed;
+    o.outline = MapOutline::Polygon;
     for (auto [file, steps] : {std::pair{"fig5.2-cell-layer.l", 7},
                                {"fig5.3-phascum-leaf.l", 12},
                                {"fig5.1-square-map.l", 6}}) {
@@ -318,45 +347,95 @@ TEST(MapGeometry, RelaxedMapsHaveNoCrossingWallsAndKeepTheirOutline) {
             const double cross = (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
             EXPECT_NEAR(cross, 0, 1e-9);
         }
-        // Settled: every interior vertex is at the centre of gravity of its neighbours.
+        // Settled: every interior vertex is at the centre of gravity of its neighbours; the
+        // default tolerance leaves vertices within a small fraction of a wall of that.
         MapDerivationOptions tight = o;
         tight.relaxTolerance = 1e-10;
         PlaneMap settled = deriveMap(s, steps, tight);
-        std::vector<Vec3> sum(settled.vertexCount(), Vec3{0, 0, 0});
-        std::vector<int> degree(settled.vertexCount(), 0);
-        for (std::size_t e = 0; e < settled.edgeCount(); ++e) {
-            sum[settled.tail[e]] = sum[settled.tail[e]] + settled.position[settled.head[e]];
-            sum[settled.head[e]] = sum[settled.head[e]] + settled.position[settled.tail[e]];
-            ++degree[settled.tail[e]];
-            ++degree[settled.head[e]];
-        }
+        expectInteriorSettled(settled, 1e-8);
         for (std::size_t v = 0; v < settled.vertexCount(); ++v) {
-            if (settled.vertexSide[v] != kNotOnOutline) continue;
-            const Vec3 c = sum[v] * (1.0 / degree[v]);
-            EXPECT_NEAR(c.x, settled.position[v].x, 1e-8);
-            EXPECT_NEAR(c.y, settled.position[v].y, 1e-8);
-            // The default tolerance leaves vertices within a small fraction of a wall.
             EXPECT_NEAR(m.position[v].x, settled.position[v].x, 1e-3);
             EXPECT_NEAR(m.position[v].y, settled.position[v].y, 1e-3);
         }
     }
 }
 
-TEST(MapGeometry, RelaxationIsTheSameForAnyThreadCount) {
-    MapLSystem s = example("fig5.2-cell-layer.l");
+TEST(MapGeometry, TheGrowingOutlineLeavesTheAxiomsShapeWithoutCrossingOrCollapsing) {
     MapDerivationOptions o;
     o.geometry = MapGeometry::Relaxed;
-    std::vector<PlaneMap> maps;
-    for (unsigned t : {1u, 2u, 7u}) {
-        o.threads = t;
-        maps.push_back(deriveMap(s, 10, o));
+    o.relaxTolerance = 1e-9;
+    for (auto [file, steps] : {std::pair{"fig5.2-cell-layer.l", 7},
+                               {"fig5.3-phascum-leaf.l", 12},
+                               {"fig5.1-square-map.l", 6}}) {
+        SCOPED_TRACE(file);
+        MapLSystem s = example(file);
+        const PlaneMap axiom = axiomMap(s);
+        PlaneMap m = deriveMap(s, steps, o);
+        EXPECT_EQ(checkPlaneMap(m), "");
+        EXPECT_TRUE(crossingEdges(m).empty());
+        expectInteriorSettled(m, 1e-6);
+        // Neither collapsed nor blown up: the layer keeps the axiom's area.
+        EXPECT_NEAR(layerArea(m), layerArea(axiom), 1e-9 * layerArea(axiom));
+        // Not the axiom's polygon: some outline vertex lies well off every side of it.
+        double farthest = 0;
+        for (std::uint32_t h : m.boundary(kOutside)) {
+            const Vec3 p = m.position[m.origin(h)];
+            double nearest = 1e300;
+            for (std::size_t e = 0; e < axiom.edgeCount(); ++e) {
+                const Vec3 a = axiom.position[axiom.tail[e]], b = axiom.position[axiom.head[e]];
+                const double len = std::hypot(b.x - a.x, b.y - a.y);
+                nearest = std::min(
+                    nearest, std::abs((b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x)) / len);
+            }
+            farthest = std::max(farthest, nearest);
+        }
+        EXPECT_GT(farthest, 0.1);
     }
-    ASSERT_GT(maps[0].vertexCount(), 1024u) << "large enough to be split among threads";
-    for (std::size_t k = 1; k < maps.size(); ++k) {
-        ASSERT_EQ(maps[k].vertexCount(), maps[0].vertexCount());
-        for (std::size_t v = 0; v < maps[0].vertexCount(); ++v) {
-            ASSERT_EQ(maps[k].position[v].x, maps[0].position[v].x);
-            ASSERT_EQ(maps[k].position[v].y, maps[0].position[v].y);
+}
+
+TEST(MapGeometry, TheGrowingOutlineEvensOutTheCellsAlongIt) {
+    // Fig 5.3 on the axiom's triangle crowds small cells along one side; the growing outline
+    // makes the cells along the outline more alike in area.
+    MapLSystem s = example("fig5.3-phascum-leaf.l");
+    auto spread = [&](MapOutline outline) {
+        MapDerivationOptions o;
+        o.geometry = MapGeometry::Relaxed;
+        o.outline = outline;
+        PlaneMap m = deriveMap(s, 10, o);
+        double smallest = 1e300, largest = 0;
+        for (std::uint32_t h : m.boundary(kOutside)) {
+            double twice = 0;
+            for (std::uint32_t k : m.boundary(m.region[PlaneMap::twin(h)])) {
+                const Vec3 a = m.position[m.origin(k)], b = m.position[m.target(k)];
+                twice += a.x * b.y - a.y * b.x;
+            }
+            smallest = std::min(smallest, twice / 2);
+            largest = std::max(largest, twice / 2);
+        }
+        return largest / smallest;
+    };
+    const double polygon = spread(MapOutline::Polygon), growing = spread(MapOutline::Growing);
+    EXPECT_LT(growing, polygon / 4) << "polygon " << polygon << ", growing " << growing;
+}
+
+TEST(MapGeometry, RelaxationIsTheSameForAnyThreadCount) {
+    MapLSystem s = example("fig5.2-cell-layer.l");
+    for (MapOutline outline : {MapOutline::Growing, MapOutline::Polygon}) {
+        MapDerivationOptions o;
+        o.geometry = MapGeometry::Relaxed;
+        o.outline = outline;
+        std::vector<PlaneMap> maps;
+        for (unsigned t : {1u, 2u, 7u}) {
+            o.threads = t;
+            maps.push_back(deriveMap(s, 14, o));
+        }
+        ASSERT_GT(maps[0].vertexCount(), 32768u) << "large enough to be split among threads";
+        for (std::size_t k = 1; k < maps.size(); ++k) {
+            ASSERT_EQ(maps[k].vertexCount(), maps[0].vertexCount());
+            for (std::size_t v = 0; v < maps[0].vertexCount(); ++v) {
+                ASSERT_EQ(maps[k].position[v].x, maps[0].position[v].x);
+                ASSERT_EQ(maps[k].position[v].y, maps[0].position[v].y);
+            }
         }
     }
 }

@@ -70,8 +70,17 @@ enum class MapGeometry {
     Relaxed,  // de Does and Lindenmayer: vertices settle at their neighbours' centre
 };
 
+// How the relaxation places the layer's outline (docs/maps.md, "The outline").
+enum class MapOutline {
+    Growing,  // outline walls move out or in until the cells along them have equal areas
+    Polygon,  // the axiom's polygon: corners stay, the vertices of a side spread along it
+};
+
 struct MapDerivationOptions {
     MapGeometry geometry = MapGeometry::Siero;
+    MapOutline outline = MapOutline::Growing;
+    // Growing outline: rounds of (interior settled, outline moved) per step.
+    int outlineRounds = 8;
     unsigned threads = 0;  // 0: all cores; the result never depends on it
     // Relaxation: conjugate-gradient iterations per step at most, and the root-mean-square
     // force left on a vertex (the sum of its wall vectors), relative to the mean wall
@@ -104,10 +113,9 @@ PlaneMap deriveMap(const MapLSystem& sys, int steps, const MapDerivationOptions&
                    const std::function<void(const PlaneMap&, const MapStepReport&)>& perStep = {});
 
 // The de Does and Lindenmayer relaxation: each interior vertex at the centre of gravity of
-// its neighbours; the vertices on a side of the axiom's polygon spread evenly along it
-// (each the middle of its two neighbours on the outline), the polygon's corners stay.
-// The interior's equilibrium is solved by conjugate gradients, in parallel, the same for
-// any thread count. Returns the iterations done.
+// its neighbours, the outline placed by options.outline's rule. The interior's equilibrium is
+// solved by conjugate gradients, in parallel, the same for any thread count. Returns the iterations
+// done.
 int relaxMap(PlaneMap& map, const MapDerivationOptions& options);
 
 // Structural checks: twins, next/region consistency, every region boundary a simple cycle,

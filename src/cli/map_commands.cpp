@@ -4,11 +4,13 @@
 #include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "graftal/map_drawing.hpp"
 #include "graftal/map_lsystem.hpp"
 #include "graftal/output.hpp"
 #include "graftal/plane_map.hpp"
+#include "standard_streams.hpp"
 
 namespace graftal::cli {
 
@@ -31,7 +33,13 @@ LoadedMap loadMap(const InputOptions& in) {
         throw usageError("a map L-system takes no view file ('" + in.viewFile + "')");
     ParseOptions po;
     po.defines = in.defines;
-    MapParseResult parsed = loadMapLSystem(in.file, po);
+    MapParseResult parsed;
+    if (in.file == "-") {
+        po.fileName = kStdinName;
+        parsed = parseMapLSystem(standardInputText(), po);
+    } else {
+        parsed = loadMapLSystem(in.file, po);
+    }
     if (!parsed.ok()) throw Error(parsed.errors());
     if (!in.quiet)
         for (const auto& w : parsed.warnings()) std::cerr << w.toString() << '\n';
@@ -50,6 +58,12 @@ MapDerivationOptions derivationOptions(const InputOptions& in, const MapOptions&
     else
         throw usageError("--map-geometry '" + map.geometry +
                          "': expected siero, relaxed or spline");
+    if (map.outline == "growing")
+        o.outline = MapOutline::Growing;
+    else if (map.outline == "polygon")
+        o.outline = MapOutline::Polygon;
+    else
+        throw usageError("--map-outline '" + map.outline + "': expected growing or polygon");
     return o;
 }
 
@@ -76,6 +90,9 @@ void addMapOptions(CLI::App& cmd, MapOptions& map, bool drawing) {
     cmd.add_option("--map-geometry", map.geometry,
                    "map L-systems: siero (vertices stay where born), relaxed (at their "
                    "neighbours' centre), spline (relaxed, cells as B-splines)");
+    cmd.add_option("--map-outline", map.outline,
+                   "map L-systems, relaxed: growing (the outline moves until the cells along "
+                   "it are alike; default) or polygon (the axiom's polygon stays)");
     if (!drawing) return;
     cmd.add_option("--map-fill", map.fill, "map L-systems: fill cells by none, age, sides, labels");
     cmd.add_flag("--map-uniform-width", map.uniformWidth,
@@ -83,6 +100,7 @@ void addMapOptions(CLI::App& cmd, MapOptions& map, bool drawing) {
 }
 
 bool isMapInput(const InputOptions& in) {
+    if (in.file == "-") return isMapLSystemText(standardInputText());
     return isMapLSystemFile(in.file);
 }
 
@@ -97,7 +115,7 @@ int runMapStats(const InputOptions& in, const MapOptions& map) {
     DerivedMap d = derive(in, map);
     const PlaneMap& m = d.map;
     nlohmann::ordered_json j;
-    j["file"] = in.file;
+    j["file"] = fileName(in);
     j["steps"] = m.step;
     j["vertices"] = m.vertexCount();
     j["edges"] = m.edgeCount();
@@ -121,7 +139,19 @@ int runMapStats(const InputOptions& in, const MapOptions& map) {
 }
 
 int runMapRender(const InputOptions& in, const RenderCommandOptions& out, const MapOptions& map) {
-    if (!imageFormatFor(out.output))
+    // -o -: the picture goes through a scratch file to standard output, as for string
+    // L-systems.
+    std::optional<ScratchFile> scratch;
+    std::string output = out.output;
+    if (out.output == "-") {
+        const FileFormat format = standardOutputFormat(out.outputFormat);
+        scratch.emplace("out" + std::string(fileFormatInfo(format).extension));
+        output = scratch->path().string();
+    } else if (!out.outputFormat.empty()) {
+        throw usageError("--format applies to -o - (standard output); the extension of " +
+                         out.output + " names its format");
+    }
+    if (!imageFormatFor(output))
         throw usageError("'" + out.output +
                          "': a map L-system is drawn as a picture (.svg, .png or .pdf)");
     if (!out.view.empty() || out.derivation)
@@ -138,7 +168,8 @@ int runMapRender(const InputOptions& in, const RenderCommandOptions& out, const 
     Scene scene = mapScene(d.map, drawing);
     RenderOptions o = out.render;
     if (o.lineColor) scene.palette[0] = *o.lineColor, o.lineColor.reset();
-    writeImage(scene, o, out.output);
+    writeImage(scene, o, output);
+    if (scratch && !copyToStandardOutput(output)) return 1;
     return 0;
 }
 

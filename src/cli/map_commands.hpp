@@ -10,9 +10,10 @@
 namespace graftal::cli {
 
 struct MapOptions {
-    std::string geometry = "siero";  // --map-geometry siero|relaxed|spline
-    std::string fill = "none";       // --map-fill none|age|sides|labels
-    bool uniformWidth = false;       // --map-uniform-width: every wall as wide
+    std::string geometry = "siero";   // --map-geometry siero|relaxed|spline
+    std::string outline = "growing";  // --map-outline growing|polygon
+    std::string fill = "none";        // --map-fill none|age|sides|labels
+    bool uniformWidth = false;        // --map-uniform-width: every wall as wide
 };
 
 // The map options of a subcommand (all of them for render, the geometry for the others).

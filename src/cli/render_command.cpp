@@ -17,10 +17,12 @@ Error usageError(const std::string& message) {
     return Error(SourceLocation{"graftal", 0, 0}, message);
 }
 
+}  // namespace
+
 // The format written to standard output by -o -: --format's, else SVG. Binary formats are
 // refused when standard output is a terminal.
-FileFormat standardOutputFormat(const RenderCommandOptions& out) {
-    const std::string name = out.outputFormat.empty() ? "svg" : out.outputFormat;
+FileFormat standardOutputFormat(const std::string& outputFormat) {
+    const std::string name = outputFormat.empty() ? "svg" : outputFormat;
     const std::optional<FileFormat> format = fileFormatFor("out." + name);
     if (!format)
         throw usageError("--format " + name + ": unknown format (use " +
@@ -33,14 +35,12 @@ FileFormat standardOutputFormat(const RenderCommandOptions& out) {
     return *format;
 }
 
-}  // namespace
-
 int runRender(const InputOptions& in, const RenderCommandOptions& out) {
     RenderRequest request;
     static_cast<DeriveRequest&>(request) = deriveRequest(in);
     std::optional<ScratchFile> scratch;
     if (out.output == "-") {
-        const FileFormat format = standardOutputFormat(out);
+        const FileFormat format = standardOutputFormat(out.outputFormat);
         scratch.emplace("out" + std::string(fileFormatInfo(format).extension));
         request.output = scratch->path();
     } else {

@@ -4,6 +4,7 @@
 
 #include <fstream>
 #include <iostream>
+#include <sstream>
 
 #include "graftal/diagnostics.hpp"
 
@@ -22,9 +23,18 @@ ScratchFile::~ScratchFile() {
     std::filesystem::remove_all(folder_, ec);
 }
 
+const std::string& standardInputText() {
+    static const std::string text = [] {
+        std::ostringstream all;
+        all << std::cin.rdbuf();
+        return std::move(all).str();
+    }();
+    return text;
+}
+
 void saveStandardInput(const ScratchFile& file) {
     std::ofstream out(file.path(), std::ios::binary);
-    out << std::cin.rdbuf();
+    out << standardInputText();
     out.flush();
     if (!out)
         throw Error(SourceLocation{kStdinName, 0, 0},

@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <string>
 
+#include "graftal/file_format.hpp"
+
 namespace graftal::cli {
 
 // The name diagnostics give to standard input.
@@ -24,10 +26,18 @@ class ScratchFile {
     std::filesystem::path folder_, path_;
 };
 
-// Copies all of standard input into `file`.
+// All of standard input, read at the first call and kept: the command looks at it to
+// choose between a map L-system and a string one before it parses it.
+const std::string& standardInputText();
+
+// Copies all of standard input (standardInputText()) into `file`.
 void saveStandardInput(const ScratchFile& file);
 
 // Copies `file` to standard output; false when standard output failed.
 bool copyToStandardOutput(const std::filesystem::path& file);
+
+// The format `graftal render -o -` writes: --format's (`format`, empty for SVG). Throws a
+// usage error for an unknown format, or a binary one when standard output is a terminal.
+FileFormat standardOutputFormat(const std::string& format);
 
 }  // namespace graftal::cli

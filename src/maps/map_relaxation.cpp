@@ -1,9 +1,19 @@
 // The de Does and Lindenmayer interpretation: vertices settle where the walls pulling on
 // them balance. At equilibrium every interior vertex is the centre of gravity of its
 // neighbours, a linear system (the graph Laplacian of the interior vertices, with the
-// outline fixed) that is solved by conjugate gradients (preconditioned by the vertex degrees)
-// instead of by iterating the averaging itself: the averaging needs about as many iterations as the
-// layer has cells across, squared; conjugate gradients about as many as it has cells across.
+// outline fixed) that is solved by conjugate gradients (preconditioned by the vertex
+// degrees) instead of by iterating the averaging itself: the averaging needs about as many
+// iterations as the layer has cells across, squared; conjugate gradients about as many as
+// it has cells across. The outline is placed by its own rule (map_outline.cpp) between
+// solves.
+//
+// Speed: the work is memory-bound (a few flops per neighbour read), so the unknowns are
+// numbered in breadth-first order from the outline (Cuthill-McKee without the degree sort):
+// the neighbours of a vertex are then a few hundred entries away in every array instead of
+// anywhere, and the rows' neighbour lists are compressed arrays of unknown numbers, the
+// outline's pull gathered once per solve. The iteration is the Chronopoulos-Gear form of
+// conjugate gradients: two passes over the vertices per iteration and one reduction point,
+// where the textbook form needs three passes, each a wait for the slowest thread.
 //
 // Every sum is formed per block of a fixed number of vertices and the blocks' sums are
 // added in block order, so the result is the same bit for bit for any number of threads.
@@ -11,13 +21,21 @@
 #include <cmath>
 
 #include "core/parallel.hpp"
-#include "graftal/plane_map.hpp"
+#include "map_outline.hpp"
 
 namespace graftal {
 
 namespace {
 
-constexpr std::size_t kBlock = 2048;
+constexpr std::size_t kBlock = 1024;
+// Below this many unknowns a second thread costs more (starting it, waiting for it at
+// every pass) than it saves.
+constexpr std::size_t kParallelFrom = 16 * kBlock;
+constexpr std::uint32_t kFixed = 0xFFFFFFFFu;
+
+struct XY {
+    double x = 0, y = 0;
+};
 
 // fn(block) for every block, the blocks shared among `threads` threads.
 template <class Fn>
@@ -27,183 +45,219 @@ void forEachBlock(std::size_t blocks, unsigned threads, Fn&& fn) {
     });
 }
 
-struct XY {
-    double x = 0, y = 0;
+double sumInOrder(const std::vector<double>& parts) {
+    double s = 0;
+    for (double v : parts) s += v;
+    return s;
+}
+
+// The interior's Laplacian in breadth-first order: row i is vertex vertexOf[i]; its interior
+// neighbours are column numbers, its outline neighbours vertex numbers (their pull is the
+// right-hand side).
+struct Rows {
+    std::vector<std::uint32_t> vertexOf;
+    std::vector<std::uint32_t> start, col;            // interior neighbours
+    std::vector<std::uint32_t> fixedStart, fixedCol;  // outline neighbours
+    std::vector<double> degree;
+    std::size_t size() const { return vertexOf.size(); }
 };
 
-// The outline: the corners of the axiom's polygon stay, and the vertices between two
-// corners spread evenly along that side (where each is the middle of its two neighbours
-// along the outline: the equilibrium of the one-dimensional rule).
-void placeOutline(PlaneMap& m) {
-    const auto walk = m.boundary(kOutside);
-    std::vector<std::uint32_t> ring;
-    ring.reserve(walk.size());
-    for (std::uint32_t h : walk) ring.push_back(m.origin(h));
-    const std::size_t n = ring.size();
-    std::size_t first = n;
-    for (std::size_t i = 0; i < n; ++i)
-        if (m.vertexSide[ring[i]] == kCorner) {
-            first = i;
-            break;
+Rows buildRows(const PlaneMap& m) {
+    const std::size_t nv = m.vertexCount(), ne = m.edgeCount();
+    // Vertex adjacency, all vertices.
+    std::vector<std::uint32_t> aStart(nv + 1, 0), adj;
+    for (std::size_t e = 0; e < ne; ++e) {
+        if (m.tail[e] == m.head[e]) continue;
+        ++aStart[m.tail[e] + 1];
+        ++aStart[m.head[e] + 1];
+    }
+    for (std::size_t v = 0; v < nv; ++v) aStart[v + 1] += aStart[v];
+    adj.resize(aStart[nv]);
+    {
+        std::vector<std::uint32_t> fill(aStart.begin(), aStart.end() - 1);
+        for (std::size_t e = 0; e < ne; ++e) {
+            const std::uint32_t a = m.tail[e], b = m.head[e];
+            if (a == b) continue;
+            adj[fill[a]++] = b;
+            adj[fill[b]++] = a;
         }
-    if (first == n) return;
-    std::size_t i = first;
-    do {
-        std::size_t j = (i + 1) % n;
-        std::size_t between = 0;
-        while (m.vertexSide[ring[j]] != kCorner) {
-            j = (j + 1) % n;
-            ++between;
+    }
+    // Breadth-first from the outline, in the outline's order: the interior is numbered in
+    // rings inwards.
+    Rows rows;
+    std::vector<std::uint32_t> number(nv, kFixed);
+    std::vector<char> seen(nv, 0);
+    std::vector<std::uint32_t> queue;
+    queue.reserve(nv);
+    for (std::uint32_t v = 0; v < nv; ++v)
+        if (m.vertexSide[v] != kNotOnOutline) seen[v] = 1;
+    for (std::uint32_t h : m.boundary(kOutside)) queue.push_back(m.origin(h));
+    for (std::size_t head = 0; head < queue.size(); ++head) {
+        const std::uint32_t v = queue[head];
+        for (std::uint32_t s = aStart[v]; s < aStart[v + 1]; ++s) {
+            const std::uint32_t u = adj[s];
+            if (seen[u]) continue;
+            seen[u] = 1;
+            number[u] = static_cast<std::uint32_t>(rows.vertexOf.size());
+            rows.vertexOf.push_back(u);
+            queue.push_back(u);
         }
-        const Vec3 a = m.position[ring[i]], b = m.position[ring[j]];
-        for (std::size_t k = 1; k <= between; ++k)
-            m.position[ring[(i + k) % n]] =
-                a + (b - a) * (static_cast<double>(k) / static_cast<double>(between + 1));
-        i = j;
-    } while (i != first);
+    }
+    const std::size_t n = rows.size();
+    rows.start.assign(n + 1, 0);
+    rows.fixedStart.assign(n + 1, 0);
+    rows.degree.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::uint32_t v = rows.vertexOf[i];
+        rows.degree[i] = static_cast<double>(aStart[v + 1] - aStart[v]);
+        for (std::uint32_t s = aStart[v]; s < aStart[v + 1]; ++s) {
+            if (number[adj[s]] != kFixed)
+                rows.col.push_back(number[adj[s]]);
+            else
+                rows.fixedCol.push_back(adj[s]);
+        }
+        rows.start[i + 1] = static_cast<std::uint32_t>(rows.col.size());
+        rows.fixedStart[i + 1] = static_cast<std::uint32_t>(rows.fixedCol.size());
+    }
+    return rows;
+}
+
+double meanWallLength(const PlaneMap& m) {
+    double sum = 0;
+    for (std::size_t e = 0; e < m.edgeCount(); ++e) {
+        const Vec3 d = m.position[m.head[e]] - m.position[m.tail[e]];
+        sum += std::sqrt(d.x * d.x + d.y * d.y);
+    }
+    return sum / static_cast<double>(std::max<std::size_t>(1, m.edgeCount()));
+}
+
+// The solver's vectors, kept for every solve of one relaxation: fresh memory costs this
+// machine's kernel more than the arithmetic does.
+struct Workspace {
+    std::vector<XY> x, b, r, u, w, p, s;
+    std::vector<double> part1, part2, part3;
+    Workspace(std::size_t n, std::size_t blocks)
+        : x(n), b(n), r(n), u(n), w(n), p(n), s(n), part1(blocks), part2(blocks), part3(blocks) {}
+};
+
+// Solves the interior for the outline where it is now, starting from the interior's
+// present positions, until the root-mean-square force left on a vertex is below
+// `tolerance` times the mean wall length. Returns the iterations done.
+int solveInterior(PlaneMap& m, const Rows& rows, Workspace& ws, double tolerance, int maxIterations,
+                  unsigned threads) {
+    const std::size_t n = rows.size();
+    if (n == 0) return 0;
+    const std::size_t blocks = (n + kBlock - 1) / kBlock;
+    const unsigned workers = n < kParallelFrom ? 1u : threads;
+    auto range = [&](std::size_t k) {
+        return std::pair{k * kBlock, std::min(n, (k + 1) * kBlock)};
+    };
+    auto& [x, b, r, u, w, p, s, part1, part2, part3] = ws;
+    std::fill(p.begin(), p.end(), XY{});
+    std::fill(s.begin(), s.end(), XY{});
+    // w = A u and the block's (r, u), (w, u) and (r, r).
+    auto multiply = [&](std::size_t k) {
+        auto [lo, hi] = range(k);
+        double ru = 0, wu = 0, rr = 0;
+        for (std::size_t i = lo; i < hi; ++i) {
+            XY acc{rows.degree[i] * u[i].x, rows.degree[i] * u[i].y};
+            for (std::uint32_t c = rows.start[i]; c < rows.start[i + 1]; ++c) {
+                acc.x -= u[rows.col[c]].x;
+                acc.y -= u[rows.col[c]].y;
+            }
+            w[i] = acc;
+            ru += r[i].x * u[i].x + r[i].y * u[i].y;
+            wu += acc.x * u[i].x + acc.y * u[i].y;
+            rr += r[i].x * r[i].x + r[i].y * r[i].y;
+        }
+        part1[k] = ru;
+        part2[k] = wu;
+        part3[k] = rr;
+    };
+    // x, b (the outline's pull), r = b - A x, u = r / degree.
+    forEachBlock(blocks, workers, [&](std::size_t k) {
+        auto [lo, hi] = range(k);
+        for (std::size_t i = lo; i < hi; ++i) {
+            const Vec3& q = m.position[rows.vertexOf[i]];
+            x[i] = {q.x, q.y};
+            XY pull{0, 0};
+            for (std::uint32_t c = rows.fixedStart[i]; c < rows.fixedStart[i + 1]; ++c) {
+                pull.x += m.position[rows.fixedCol[c]].x;
+                pull.y += m.position[rows.fixedCol[c]].y;
+            }
+            b[i] = pull;
+        }
+    });
+    forEachBlock(blocks, workers, [&](std::size_t k) {
+        auto [lo, hi] = range(k);
+        for (std::size_t i = lo; i < hi; ++i) {
+            XY acc{b[i].x - rows.degree[i] * x[i].x, b[i].y - rows.degree[i] * x[i].y};
+            for (std::uint32_t c = rows.start[i]; c < rows.start[i + 1]; ++c) {
+                acc.x += x[rows.col[c]].x;
+                acc.y += x[rows.col[c]].y;
+            }
+            r[i] = acc;
+            u[i] = {acc.x / rows.degree[i], acc.y / rows.degree[i]};
+        }
+    });
+    forEachBlock(blocks, workers, multiply);
+    double gamma = sumInOrder(part1), delta = sumInOrder(part2), rr = sumInOrder(part3);
+    const double wall = meanWallLength(m);
+    const double stop = tolerance * tolerance * wall * wall * static_cast<double>(n);
+    double alpha = delta > 0 ? gamma / delta : 0, beta = 0;
+    int iterations = 0;
+    while (iterations < maxIterations && rr > stop && delta > 0) {
+        ++iterations;
+        forEachBlock(blocks, workers, [&](std::size_t k) {
+            auto [lo, hi] = range(k);
+            for (std::size_t i = lo; i < hi; ++i) {
+                p[i] = {u[i].x + beta * p[i].x, u[i].y + beta * p[i].y};
+                s[i] = {w[i].x + beta * s[i].x, w[i].y + beta * s[i].y};
+                x[i].x += alpha * p[i].x;
+                x[i].y += alpha * p[i].y;
+                r[i].x -= alpha * s[i].x;
+                r[i].y -= alpha * s[i].y;
+                u[i] = {r[i].x / rows.degree[i], r[i].y / rows.degree[i]};
+            }
+        });
+        forEachBlock(blocks, workers, multiply);
+        const double next = sumInOrder(part1);
+        delta = sumInOrder(part2);
+        rr = sumInOrder(part3);
+        beta = next / gamma;
+        const double denominator = delta - beta * next / alpha;
+        if (!(denominator > 0)) break;
+        alpha = next / denominator;
+        gamma = next;
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+        m.position[rows.vertexOf[i]].x = x[i].x;
+        m.position[rows.vertexOf[i]].y = x[i].y;
+    }
+    return iterations;
 }
 
 }  // namespace
 
 int relaxMap(PlaneMap& map, const MapDerivationOptions& options) {
-    placeOutline(map);
-    const std::size_t nv = map.vertexCount(), ne = map.edgeCount();
-    // Unknowns: the interior vertices, numbered in vertex order.
-    std::vector<std::uint32_t> unknown(nv, 0xFFFFFFFFu);
-    std::vector<std::uint32_t> vertexOf;
-    for (std::uint32_t v = 0; v < nv; ++v)
-        if (map.vertexSide[v] == kNotOnOutline) {
-            unknown[v] = static_cast<std::uint32_t>(vertexOf.size());
-            vertexOf.push_back(v);
-        }
-    const std::size_t n = vertexOf.size();
-    if (n == 0) return 0;
-    // Rows of the Laplacian in compressed form: degree on the diagonal, the interior
-    // neighbours off it; the outline neighbours go to the right-hand side.
-    std::vector<std::uint32_t> start(n + 1, 0);
-    for (std::size_t e = 0; e < ne; ++e) {
-        const std::uint32_t a = map.tail[e], b = map.head[e];
-        if (a == b) continue;
-        if (unknown[a] != 0xFFFFFFFFu) ++start[unknown[a] + 1];
-        if (unknown[b] != 0xFFFFFFFFu) ++start[unknown[b] + 1];
-    }
-    for (std::size_t i = 0; i < n; ++i) start[i + 1] += start[i];
-    std::vector<std::uint32_t> neighbour(start[n]);
-    {
-        std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-        for (std::size_t e = 0; e < ne; ++e) {
-            const std::uint32_t a = map.tail[e], b = map.head[e];
-            if (a == b) continue;
-            if (unknown[a] != 0xFFFFFFFFu) neighbour[fill[unknown[a]]++] = b;
-            if (unknown[b] != 0xFFFFFFFFu) neighbour[fill[unknown[b]]++] = a;
-        }
-    }
     const unsigned threads = options.threads == 0 ? defaultThreadCount() : options.threads;
-    const std::size_t blocks = (n + kBlock - 1) / kBlock;
-    const unsigned workers = blocks == 1 ? 1u : threads;
-    auto blockRange = [&](std::size_t k) {
-        return std::pair{k * kBlock, std::min(n, (k + 1) * kBlock)};
-    };
-
-    std::vector<XY> x(n), r(n), p(n), q(n);
-    std::vector<double> partial(blocks), partial2(blocks);
-    auto sumPartials = [](const std::vector<double>& parts) {
-        double s = 0;
-        for (double v : parts) s += v;
-        return s;
-    };
-    for (std::size_t i = 0; i < n; ++i)
-        x[i] = {map.position[vertexOf[i]].x, map.position[vertexOf[i]].y};
-    // r = b - A x, with b the pull of the outline neighbours; z = r / degree (the diagonal
-    // preconditioner: vertices differ in degree from 2 to 10 and more).
-    forEachBlock(blocks, workers, [&](std::size_t k) {
-        auto [b, e] = blockRange(k);
-        double rz = 0, rr = 0;
-        for (std::size_t i = b; i < e; ++i) {
-            XY acc{0, 0};
-            const double degree = static_cast<double>(start[i + 1] - start[i]);
-            for (std::uint32_t s = start[i]; s < start[i + 1]; ++s) {
-                const Vec3& pu = map.position[neighbour[s]];
-                acc.x += pu.x;
-                acc.y += pu.y;
-            }
-            r[i] = {acc.x - degree * x[i].x, acc.y - degree * x[i].y};
-            p[i] = {r[i].x / degree, r[i].y / degree};
-            rz += r[i].x * p[i].x + r[i].y * p[i].y;
-            rr += r[i].x * r[i].x + r[i].y * r[i].y;
-        }
-        partial[k] = rz;
-        partial2[k] = rr;
-    });
-    double rz = sumPartials(partial);
-    double rr = sumPartials(partial2);
-    // Settled when the root-mean-square force left on a vertex (the sum of its wall
-    // vectors) is below the tolerance times the mean wall length: the vertices are then
-    // that close to their neighbours' centre, a fraction of a wall.
-    double wallLength = 0;
-    for (std::size_t e = 0; e < ne; ++e) {
-        const Vec3 d = map.position[map.head[e]] - map.position[map.tail[e]];
-        wallLength += std::sqrt(d.x * d.x + d.y * d.y);
+    const Rows rows = buildRows(map);
+    Workspace ws(rows.size(), (rows.size() + kBlock - 1) / kBlock);
+    if (options.outline == MapOutline::Polygon) {
+        placeOutlineOnPolygon(map);
+        return solveInterior(map, rows, ws, options.relaxTolerance, options.relaxIterations,
+                             threads);
     }
-    wallLength /= static_cast<double>(std::max<std::size_t>(1, ne));
-    const double stop = options.relaxTolerance * options.relaxTolerance * wallLength * wallLength *
-                        static_cast<double>(n);
+    // The growing outline: rounds of (interior settled roughly, outline moved), then the
+    // interior settled for the outline where it ends.
     int iterations = 0;
-    auto interiorOrOutline = [&](std::uint32_t u, const std::vector<XY>& v) {
-        return unknown[u] != 0xFFFFFFFFu ? v[unknown[u]] : XY{0, 0};
-    };
-    while (iterations < options.relaxIterations && rr > stop) {
-        ++iterations;
-        forEachBlock(blocks, workers, [&](std::size_t k) {
-            auto [b, e] = blockRange(k);
-            double pq = 0;
-            for (std::size_t i = b; i < e; ++i) {
-                const double degree = static_cast<double>(start[i + 1] - start[i]);
-                XY acc{degree * p[i].x, degree * p[i].y};
-                for (std::uint32_t s = start[i]; s < start[i + 1]; ++s) {
-                    const XY pu = interiorOrOutline(neighbour[s], p);
-                    acc.x -= pu.x;
-                    acc.y -= pu.y;
-                }
-                q[i] = acc;
-                pq += p[i].x * acc.x + p[i].y * acc.y;
-            }
-            partial[k] = pq;
-        });
-        const double alpha = rz / sumPartials(partial);
-        forEachBlock(blocks, workers, [&](std::size_t k) {
-            auto [b, e] = blockRange(k);
-            double sz = 0, sr = 0;
-            for (std::size_t i = b; i < e; ++i) {
-                x[i].x += alpha * p[i].x;
-                x[i].y += alpha * p[i].y;
-                r[i].x -= alpha * q[i].x;
-                r[i].y -= alpha * q[i].y;
-                const double degree = static_cast<double>(start[i + 1] - start[i]);
-                sz += (r[i].x * r[i].x + r[i].y * r[i].y) / degree;
-                sr += r[i].x * r[i].x + r[i].y * r[i].y;
-            }
-            partial[k] = sz;
-            partial2[k] = sr;
-        });
-        const double next = sumPartials(partial);
-        const double beta = next / rz;
-        rz = next;
-        rr = sumPartials(partial2);
-        forEachBlock(blocks, workers, [&](std::size_t k) {
-            auto [b, e] = blockRange(k);
-            for (std::size_t i = b; i < e; ++i) {
-                const double degree = static_cast<double>(start[i + 1] - start[i]);
-                p[i].x = r[i].x / degree + beta * p[i].x;
-                p[i].y = r[i].y / degree + beta * p[i].y;
-            }
-        });
+    for (int round = 0; round < options.outlineRounds; ++round) {
+        iterations += solveInterior(map, rows, ws, std::max(options.relaxTolerance, 3e-2),
+                                    options.relaxIterations, threads);
+        moveGrowingOutline(map);
     }
-    for (std::size_t i = 0; i < n; ++i) {
-        map.position[vertexOf[i]].x = x[i].x;
-        map.position[vertexOf[i]].y = x[i].y;
-    }
-    return iterations;
+    return iterations +
+           solveInterior(map, rows, ws, options.relaxTolerance, options.relaxIterations, threads);
 }
 
 }  // namespace graftal
