@@ -17,6 +17,7 @@
 #include <string>
 
 #include "graftal/diagnostics.hpp"
+#include "graftal/generalized_cylinder.hpp"
 #include "graftal/surface.hpp"
 #include "graftal/vec3.hpp"
 #include "polygon_triangulation.hpp"
@@ -261,6 +262,7 @@ std::ostream& operator<<(std::ostream& os, const Mesh& m) {
 }
 
 Mesh buildMesh(const Scene& scene, const MeshOptions& options, const SurfaceLibrary* surfaces) {
+    if (!scene.sweptTubes.empty()) return buildMeshWithSweptTubes(scene, options, surfaces);
     checkOptions(options);
     const std::vector<const Surface*> resolved = resolveSurfaces(scene, surfaces);
     const TubeMesher tubes(scene, options);
