@@ -77,7 +77,11 @@ for file in "${files[@]}"; do
     name=$(basename "$file" .l)
     out="$outdir/$name.png"
     start=${EPOCHREALTIME:-0}
-    if msg=$("$exe" render "$file" -o "$out" --size 800x800 2>&1) && [ -s "$out" ]; then
+    # A cpfg model's view file beside it (same name, .v) is its second argument.
+    view=()
+    [ -f "${file%.l}.v" ] && view=("${file%.l}.v")
+    if msg=$("$exe" render "$file" ${view[@]+"${view[@]}"} -o "$out" --size 800x800 2>&1) &&
+        [ -s "$out" ]; then
         end=${EPOCHREALTIME:-0}
         printf 'ok    %-40s -> %s (%s s)\n' "$name.l" "$out" \
             "$(awk -v a="$start" -v b="$end" 'BEGIN { printf "%.2f", b - a }')"

@@ -68,6 +68,21 @@ struct Sphere {
     std::uint16_t color = 0;
 };
 
+// A generalized cylinder between two control points (cpfg's @Gs, @Gc, @Ge): cross-sections
+// (rings of `ringSize` points; ring k is points[k * ringSize .. (k + 1) * ringSize)) swept
+// along a curved centre line whose direction at ring k is headings[k]. A closed
+// cross-section repeats its first point last. Its centre line is also drawn as the
+// segments [firstSegment, firstSegment + segmentCount) for pictures without surfaces (2D
+// line art); a 3D mesh draws the swept surface instead of them.
+struct SweptTube {
+    std::vector<Vec3> points;
+    std::vector<Vec3> headings;
+    std::uint32_t ringSize = 0;
+    bool closed = true;
+    std::uint16_t color = 0;
+    std::uint32_t firstSegment = 0, segmentCount = 0;
+};
+
 class Scene {
   public:
     std::vector<Segment> segments;
@@ -82,6 +97,8 @@ class Scene {
     // Circles and balls the turtle places with @o, @c and @O.
     std::vector<Disc> discs;
     std::vector<Sphere> spheres;
+    // Generalized cylinders, one per piece between two control points.
+    std::vector<SweptTube> sweptTubes;
     // The width a segment has when the turtle never changed it: what 2D line art scales by.
     float baseWidth = 1;
     // True when anything left the z = 0 plane: 3D outputs and views make sense.

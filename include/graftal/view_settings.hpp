@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "graftal/contour.hpp"
 #include "graftal/diagnostics.hpp"
 #include "graftal/music_scale.hpp"
 #include "graftal/scene.hpp"
@@ -84,6 +85,10 @@ struct ViewSettings {
     SplineMode splineMode = SplineMode::Segments;  // `spline: path` draws kolams (LSFP 6.2)
     bool kolamDots = false;  // `kolam dots: on`: the grid of dots the kolam's loops surround
     MusicSettings music;
+    // Generalized cylinders (@Gs, @Gc, @Ge): the points around a cross-section (cpfg's
+    // `contour sides:`) and the contours `contour: ID FILE` lines load, which @#(ID) picks.
+    int contourSides = 8;
+    std::vector<Contour> contours;
 };
 
 std::ostream& operator<<(std::ostream& os, const ViewSettings& v);

@@ -18,6 +18,7 @@
 
 #include "core/huge_pages.hpp"
 #include "graftal/diagnostics.hpp"
+#include "graftal/generalized_cylinder.hpp"
 #include "graftal/surface.hpp"
 #include "graftal/vec3.hpp"
 #include "mesh_parts.hpp"
@@ -220,6 +221,11 @@ void meshing::buildSharedMesh(const Scene& scene, const MeshOptions& options,
 }
 
 Mesh buildMesh(const Scene& scene, const MeshOptions& options, const SurfaceLibrary* surfaces) {
+    if (!scene.sweptTubes.empty()) {
+        Mesh mesh = buildMesh(withoutSweptCentreLines(scene), options, surfaces);
+        appendSweptTubes(scene, mesh);
+        return mesh;
+    }
     meshing::checkMeshOptions(options);
     MeshOptions tubesOnly = options;
     tubesOnly.curveRadius = 0;  // a Mesh has no curves

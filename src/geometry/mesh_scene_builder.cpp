@@ -9,6 +9,7 @@
 #include <tuple>
 #include <utility>
 
+#include "graftal/generalized_cylinder.hpp"
 #include "graftal/mesh_scene.hpp"
 #include "graftal/surface.hpp"
 #include "mesh_parts.hpp"
@@ -108,6 +109,11 @@ MeshScene buildMeshScene(const Scene& scene, const MeshOptions& options,
 
 void buildMeshScene(const Scene& scene, const MeshOptions& options, const SurfaceLibrary* surfaces,
                     MeshScene& out) {
+    if (!scene.sweptTubes.empty()) {
+        buildMeshScene(withoutSweptCentreLines(scene), options, surfaces, out);
+        appendSweptTubes(scene, out.mesh);
+        return;
+    }
     meshing::checkMeshOptions(options);
     const std::vector<const Surface*> resolved = meshing::resolveSurfaces(scene, surfaces);
     const TubeMesher tubes(scene, options);

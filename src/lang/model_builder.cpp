@@ -8,6 +8,7 @@
 #include <sstream>
 #include <variant>
 
+#include "contour_setting.hpp"
 #include "graftal/parser_target.hpp"
 
 namespace graftal {
@@ -131,6 +132,10 @@ void ModelBuilder::environmentLine(EnvironmentLine line) {
 void ModelBuilder::viewSetting(const ViewSetting& setting) {
     if (setting.name == "function" || setting.name == "function set") {
         loadFunctions(setting);
+        return;
+    }
+    if (setting.name == "contour") {
+        loadContourSetting(model_.view, setting, diags_);
         return;
     }
     std::string problem = applyViewSetting(model_.view, setting);

@@ -126,6 +126,7 @@ const std::vector<std::string>& viewSettingNames() {
         "music instrument",
         "music axis",
         "music unit",
+        "contour sides",
     };
     return names;
 }
@@ -255,6 +256,11 @@ std::string applyViewSetting(ViewSettings& view, const ViewSetting& setting) {
         if (d < 1 || d > 128 || d != std::floor(d))
             return "music instrument is a General MIDI program, a whole number from 1 to 128";
         view.music.instrument = static_cast<int>(d);
+    } else if (kw == "contour sides") {
+        if (d < 3 || d > 1024 || d != std::floor(d))
+            return "contour sides is a whole number from 3 to 1024 (the points around a "
+                   "generalized cylinder)";
+        view.contourSides = static_cast<int>(d);
     } else if (kw == "music unit") {
         if (d <= 0 || d > 64) return "music unit is the beats of one step, above 0 and at most 64";
         view.music.unit = d;

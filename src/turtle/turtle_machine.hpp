@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "generalized_cylinder_track.hpp"
 #include "graftal/lsystem.hpp"
 #include "graftal/model.hpp"
 #include "graftal/scene.hpp"
@@ -169,7 +170,11 @@ class TurtleMachine {
     TurtleMachine(const Model& model, Sink& sink)
         : TurtleMachine(model.lsystem, model.view, sink) {}
     TurtleMachine(const LSystem& ls, const ViewSettings& view, Sink& sink)
-        : ls_(ls), view_(view), sink_(sink), ops_(opTable(ls)) {
+        : ls_(ls),
+          view_(view),
+          sink_(sink),
+          ops_(opTable(ls)),
+          cylinders_(view.contours, view.contourSides) {
         const ViewSettings& v = view_;
         double delta = v.angleDegrees * kPi / 180.0;
         deltaCos_ = std::cos(delta);
@@ -215,6 +220,11 @@ class TurtleMachine {
         if (atPending_) {
             atPending_ = false;
             atCommand(s, args);
+            return;
+        }
+        if (cylinderPending_) {  // the module after @G says what it does
+            cylinderPending_ = false;
+            cylinderCommand(s, args);
             return;
         }
         TurtleOp op = ops_[s];
@@ -419,6 +429,7 @@ class TurtleMachine {
             case TurtleOp::Push: {
                 note(state_.position);
                 stack_.push_back(state_);
+                cylinders_.push();
                 state_.lastSegment = kNoSegment;  // a branch is a new axis
                 break;
             }
@@ -431,6 +442,7 @@ class TurtleMachine {
                 note(state_.position);
                 state_ = stack_.back();
                 stack_.pop_back();
+                cylinders_.pop();
                 break;
             case TurtleOp::PolygonBegin:
                 note(state_.position);
@@ -526,8 +538,60 @@ class TurtleMachine {
                 }
                 break;
             }
+            case 'G':
+                cylinderPending_ = true;
+                break;
+            case '#':
+                cylinders_.selectContour(args);
+                break;
+            case '!':
+                cylinders_.setSides(args);
+                break;
             default:
                 break;
+        }
+    }
+
+    // @Gs, @Gc(n), @Ge(n), @Gt, @Gr: a control point here (and the piece it ends drawn) or
+    // the tangents of the next ones.
+    void cylinderCommand(Symbol sub, std::span<const double> args) {
+        CylinderControlPoint here = cylinders_.attributes();
+        here.position = state_.position;
+        here.heading = state_.heading;
+        here.left = state_.left;
+        here.up = state_.up;
+        here.width = state_.width;
+        here.color = state_.color;
+        cylinders_.command(sub, args, here, [&](const GeneralizedCylinderTrack::Piece& piece) {
+            drawCylinderPiece(piece);
+        });
+    }
+
+    // The centre line as segments (what every output draws), and for sinks that keep
+    // surfaces the swept cross-sections.
+    void drawCylinderPiece(const GeneralizedCylinderTrack::Piece& piece) {
+        const std::vector<CylinderRing> rings = cylinderRings(piece.from, piece.to, piece.steps);
+        if (rings.size() < 2) return;
+        std::uint32_t first = kNoSegment, previous = kNoSegment;
+        for (std::size_t k = 0; k + 1 < rings.size(); ++k) {
+            const CylinderRing &a = rings[k], &b = rings[k + 1];
+            if (!is3D_ && std::fabs(b.centre.z) > 1e-9 * (1 + length(b.centre - a.centre)))
+                mark3D();
+            previous =
+                sink_.segment(Segment{a.centre, b.centre, static_cast<float>(a.radius + b.radius),
+                                      piece.from.color, previous, a.up});
+            if (k == 0) first = previous;
+        }
+        if constexpr (requires { sink_.sweptTube(SweptTube{}); }) {
+            SweptTube tube =
+                sweepRings(rings, cylinders_.contourPointsOf(piece.from.contour, piece.to.sides),
+                           cylinders_.contourPointsOf(piece.to.contour, piece.to.sides),
+                           cylinders_.closedContour(piece.from.contour) &&
+                               cylinders_.closedContour(piece.to.contour),
+                           piece.from.color);
+            tube.firstSegment = first;
+            tube.segmentCount = static_cast<std::uint32_t>(rings.size() - 1);
+            sink_.sweptTube(std::move(tube));
         }
     }
 
@@ -601,7 +665,9 @@ class TurtleMachine {
     Vec3 torque_{0, 0, 0};
     bool hasTorque_ = false;
     bool is3D_ = false;
-    bool atPending_ = false;  // the last module was an @
+    bool atPending_ = false;        // the last module was an @
+    bool cylinderPending_ = false;  // the last modules were @G
+    GeneralizedCylinderTrack cylinders_;
     std::uint64_t rotations_ = 0;
     std::array<AngleMemo, 4> angles_{};
     std::size_t nextAngle_ = 0;
@@ -629,6 +695,7 @@ class SceneSink {
     }
     void disc(const Disc& d) { scene_.discs.push_back(d); }
     void sphere(const Sphere& s) { scene_.spheres.push_back(s); }
+    void sweptTube(SweptTube t) { scene_.sweptTubes.push_back(std::move(t)); }
     void baseWidth(float w) { scene_.baseWidth = w; }
     void finish(bool is3D) { scene_.is3D = is3D; }
 

@@ -1,0 +1,44 @@
+// cpfg's contours: the cross-sections of generalized cylinders (@Gs, @Gc, @Ge). A contour
+// is a closed or open cubic B-spline over control points drawn in vlab's contour editor,
+// kept in a `.con` file that the view file names with `contour: ID FILE`; `@#(ID)` makes it
+// the cross-section of the next control points. The circle (id 0) needs no file.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "graftal/diagnostics.hpp"
+#include "graftal/vec3.hpp"
+
+namespace graftal {
+
+struct Contour {
+    int id = 0;
+    std::string name;  // the file's `name:` line, or the file name
+    bool closed = true;
+    std::vector<Vec3> controlPoints;  // x, y across the cylinder (z is read, not drawn)
+};
+
+// Reads a `.con` file. Three layouts are accepted, as cpfg reads them:
+//   old:      `N DIM closed|open`, then N points of DIM (2 or 3) numbers;
+//   cver 1 1: `cver 1 1`, `name: NAME`, `points: N TOTAL`, `type: open|closed`, then N
+//             lines `x y z m` (the point repeated m times, TOTAL points in all);
+//   cver 1 2 and 1 3: the same with `type: or|cr|oe|ce` (open/closed, regular/end
+//             points), and for 1 3 a `samples: n` line, an optional `background:` line
+//             and `markers: k` followed by k lines, before the points.
+// Throws Error at `fileName`:line:column naming what was expected.
+Contour parseContourFile(std::string_view text, const std::string& fileName, int id = 0);
+
+// The points of a cross-section of radius 1 with `sides` sides: for a closed contour
+// sides + 1 points, the last repeating the first; for an open one sides + 1 points from
+// end to end. cpfg's method: the B-spline (periodic for closed contours, uniform for open
+// ones) is measured at 10 points per span, and the points are spaced evenly along that
+// length; a closed contour is turned about its centre so that it starts on the +x axis.
+std::vector<Vec3> contourPoints(const Contour& contour, int sides);
+
+// The default cross-section: `sides` points around the unit circle from (1, 0), and the
+// first again (cpfg's contour 0).
+std::vector<Vec3> circleContourPoints(int sides);
+
+}  // namespace graftal
