@@ -56,6 +56,7 @@ EXPECTED = {
     "honda23d": 7 * 2**23 - 6,
     "interp8": koch_modules(8),
     "stream11": koch_modules(11),
+    "render3d": 8_388_581,  # 1,048,575 segments
 }
 
 # Parameters per module of Honda's tree, to size its output (5 bytes per module plus 4
@@ -76,6 +77,7 @@ ROWS = [
     ("interp8", "5. Koch n=8 + 2D turtle", "≥ 300 M modules/s", "—"),
     ("memcpy", "6. memcpy probe (Koch n=8 output, 1 B/module)", "— (the floor)", "—"),
     ("stream11", "7. Koch n=11 streamed to PNG", "≤ 120 s, ≤ 100 MB", "—"),
+    ("render3d", "8. Honda monopodial n=20 ray traced, 800×800", "≤ 2 s, ≤ 800 MB", "—"),
 ]
 
 
@@ -400,6 +402,9 @@ def target_met(key: str, g: Measured, modules: int | None) -> str:
     if key == "interp8":
         rate = modules / t / 1e6
         return ("yes" if rate >= 300 else "no") + f" ({rate:,.0f} M/s)"
+    if key == "render3d":
+        ok = t <= 2 and rss <= 800 * 1000**2
+        return ("yes" if ok else "no") + f" ({t:.2f} s, {rss / 1000**2:.0f} MB)"
     if key == "stream11":
         ok = t <= 120 and rss <= 100 * MiB
         return ("yes" if ok else "no") + f" ({t:.0f} s, {rss / MiB:.0f} MiB)"
