@@ -236,6 +236,17 @@ else
     echo "not available (graftal render has no --stream)" >"$results/stream11.graftal.unavailable"
 fi
 
+# ---- 8. a big 3D plant ray traced --------------------------------------------------------
+# Honda's monopodial tree at n = 20: 1,048,575 segments to an 800x800 ray-traced PNG (mesh,
+# curves, Embree's BVH, the pixels); the peak RSS is the whole process's.
+if wanted render3d; then
+    say "bench: graftal render honda-monopodial-tree.l -n 20 (ray traced, 800x800)"
+    measure render3d.graftal "$RUNS" "$BUDGET" 600 \
+        "$graftal" render "$root/examples/honda-monopodial-tree.l" -n 20 --size 800x800 \
+        -o "$results/honda-monopodial-n20.png"
+    echo "not written for the peer" >"$results/render3d.peer.unavailable"
+fi
+
 # ---- the table ---------------------------------------------------------------------------
 load_after=$(cut -d' ' -f1-3 /proc/loadavg)
 python3 - "$results/env.json" "$load_after" "$(( $(date +%s) - start ))" <<'EOF'

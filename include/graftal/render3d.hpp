@@ -26,7 +26,7 @@ struct Lighting {
     Vec3 sunDirection{0.4, 1.0, 0.6};  // towards the sun (need not be unit length)
     double sunIntensity = 0.9;
     // The sun's apparent size: shadows are soft over this angle (0: a point, sharp shadows).
-    double sunDiameterDegrees = 5;
+    double sunDiameterDegrees = 2;
     double skyIntensity = 0.35;  // light from the sky hemisphere (and the ground below it)
     // Ambient occlusion: rays per hit that look for the sky, so that leaves shade each other
     // and the inside of a crown is darker than its outside. 0: the sky is never hidden.
