@@ -426,6 +426,12 @@ TEST_F(StudioServerTest, ThumbnailIsAPng) {
     ASSERT_TRUE(res);
     ASSERT_EQ(res->status, 200);
     EXPECT_EQ(res->body.substr(0, 4), "\x89PNG");
+    // A view file put beside the model redraws it (45 degree turns: another picture).
+    writeText(root / "hilbert.v", "angle increment: 45\n");
+    auto withView = client->Get("/api/thumbnail?path=hilbert.l");
+    ASSERT_TRUE(withView);
+    ASSERT_EQ(withView->status, 200);
+    EXPECT_NE(withView->body, res->body);
 }
 
 TEST_F(StudioServerTest, WatchAnswersWhenTheFileChanges) {
