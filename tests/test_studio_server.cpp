@@ -228,28 +228,45 @@ TEST_F(StudioServerTest, DeriveSendsStatsAndSegmentsAsBinary) {
     // Hilbert curve at step 2: 4^2 - 1 segments.
     EXPECT_EQ(meta["stats"]["segments"], 15);
     EXPECT_EQ(meta["string"].get<std::string>().substr(0, 10), "-+XF-YFY-F");
-    std::uint32_t header[4];
+    std::uint32_t header[6];
     std::memcpy(header, geometry.data(), sizeof header);
-    EXPECT_EQ(header[0], 0x324C4647u);
+    EXPECT_EQ(header[0], 0x334C4647u);
     EXPECT_EQ(header[1], 15u);
+    // The curve is one polyline: 16 points and one run of 15 links.
+    EXPECT_EQ(header[4], 16u);
+    EXPECT_EQ(header[5], 1u);
     float bounds[6];
-    std::memcpy(bounds, geometry.data() + 16, sizeof bounds);
+    std::memcpy(bounds, geometry.data() + 24, sizeof bounds);
     EXPECT_NEAR(bounds[0], 0, 1e-6);
     EXPECT_FLOAT_EQ(bounds[3], 3);  // the step-2 curve spans 3 x 3 units
     std::uint32_t paletteCount = 0;
-    std::memcpy(&paletteCount, geometry.data() + 52, 4);
+    std::memcpy(&paletteCount, geometry.data() + 60, 4);
     ASSERT_GT(paletteCount, 0u);
-    // Header, palette, then 4 coordinates, a width and a colour (16 bits each) a segment,
-    // padded to 4 bytes.
-    const std::size_t segmentsAt = 56 + 4 * paletteCount;
-    EXPECT_EQ(geometry.size(), segmentsAt + 15 * 12);
-    // The first segment runs from (0, 0) up to (0, 1): a third of the box's height.
+    // Header, palette, the points (x y, 16 bits each), then the run: its link count, width
+    // and colour.
+    const std::size_t pointsAt = 64 + 4 * paletteCount;
+    EXPECT_EQ(geometry.size(), pointsAt + 16 * 4 + 8);
+    // The curve runs from (0, 0) up to (0, 1): a third of the box's height.
     std::uint16_t first[4];
-    std::memcpy(first, geometry.data() + segmentsAt, sizeof first);
+    std::memcpy(first, geometry.data() + pointsAt, sizeof first);
     EXPECT_EQ(first[0], 0);
     EXPECT_EQ(first[1], 0);
     EXPECT_EQ(first[2], 0);
     EXPECT_EQ(first[3], 65535 / 3);
+    std::uint32_t links = 0;
+    std::memcpy(&links, geometry.data() + pointsAt + 16 * 4, 4);
+    EXPECT_EQ(links, 15u);
+
+    // A branch is a jump: F[+F]F draws three segments from four points... and a jump back.
+    json branched = model(
+        "Lsystem: 1\nderivation length: 1\nangle factor: 4\naxiom: A\n"
+        "A --> F[+F]F\nendlsystem\n");
+    auto [branchMeta, branch] = splitDerive(post("/api/derive", branched)->body);
+    std::uint32_t branchHeader[6];
+    std::memcpy(branchHeader, branch.data(), sizeof branchHeader);
+    EXPECT_EQ(branchHeader[1], 3u);  // segments
+    EXPECT_EQ(branchHeader[4], 5u);  // (0,0) (0,1) (-1,1); then (0,1) again, (0,2)
+    EXPECT_EQ(branchHeader[5], 3u);  // two links, a jump, one link
 
     body["defines"] = {{"STEPS", 1}};
     body.erase("steps");
@@ -409,6 +426,12 @@ TEST_F(StudioServerTest, ThumbnailIsAPng) {
     ASSERT_TRUE(res);
     ASSERT_EQ(res->status, 200);
     EXPECT_EQ(res->body.substr(0, 4), "\x89PNG");
+    // A view file put beside the model redraws it (45 degree turns: another picture).
+    writeText(root / "hilbert.v", "angle increment: 45\n");
+    auto withView = client->Get("/api/thumbnail?path=hilbert.l");
+    ASSERT_TRUE(withView);
+    ASSERT_EQ(withView->status, 200);
+    EXPECT_NE(withView->body, res->body);
 }
 
 TEST_F(StudioServerTest, WatchAnswersWhenTheFileChanges) {

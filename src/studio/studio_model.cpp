@@ -330,11 +330,13 @@ StudioPicture derivePicture(const ModelInput& input, const StudioLimits& limits,
 }
 
 std::string encodeLines(const Scene& scene) {
-    // Twelve bytes a flat segment (sixteen in 3D): end points as 16-bit fractions of the
-    // bounding box, width and palette index as 16-bit numbers. Fewer bytes is what keeps
-    // the page fast; a 65536th of the picture is far below a pixel until zoomed 80 times.
+    // The segments as polylines: each point once, as 16-bit fractions of the bounding box
+    // (a 65536th of the picture is far below a pixel until zoomed 80 times), and runs of
+    // links sharing a width and a colour. A turtle's path is mostly joined, so a flat
+    // segment costs 4 bytes and a few per run instead of two end points each; bytes are
+    // what it costs to move a picture into the page.
     const std::size_t n = scene.segments.size();
-    const std::size_t stride = scene.is3D ? 6 : 4;  // x y (z) per end
+    const std::size_t dims = scene.is3D ? 3 : 2;
     const Bounds b = scene.bounds();
     const bool empty = b.empty();
     const Vec3 origin = empty ? Vec3{} : b.min;
@@ -347,24 +349,39 @@ std::string encodeLines(const Scene& scene) {
     float maxWidth = 0;
     for (const Segment& s : scene.segments) maxWidth = std::max(maxWidth, s.width);
     const double widthScale = maxWidth > 0 ? 65535.0 / maxWidth : 0.0;
+    const std::size_t paletteSize = std::clamp<std::size_t>(scene.palette.size(), 1, 65535);
 
-    std::vector<std::uint16_t> positions(stride * n), widths(n), colors(n);
-    const std::size_t paletteSize = std::max<std::size_t>(scene.palette.size(), 1);
+    struct Run {
+        std::uint32_t links;
+        std::uint16_t width, color;  // color kJump: the pen moves, nothing is drawn
+    };
+    constexpr std::uint16_t kJump = 0xFFFF;
+    std::vector<std::uint16_t> points;
+    points.reserve(dims * (n + n / 8 + 1));
+    std::vector<Run> runs;
+    auto link = [&](std::uint16_t width, std::uint16_t color) {
+        if (!runs.empty() && runs.back().width == width && runs.back().color == color)
+            ++runs.back().links;
+        else
+            runs.push_back({1, width, color});
+    };
+    std::uint16_t last[3] = {0, 0, 0};
     double ink = 0;
     for (std::size_t i = 0; i < n; ++i) {
         const Segment& s = scene.segments[i];
-        std::uint16_t* p = positions.data() + stride * i;
         const Vec3 a = s.a - origin, e = s.b - origin;
-        if (stride == 6) {
-            p[0] = q(a.x, qx), p[1] = q(a.y, qy), p[2] = q(a.z, qz);
-            p[3] = q(e.x, qx), p[4] = q(e.y, qy), p[5] = q(e.z, qz);
-        } else {
-            p[0] = q(a.x, qx), p[1] = q(a.y, qy), p[2] = q(e.x, qx), p[3] = q(e.y, qy);
+        const std::uint16_t from[3] = {q(a.x, qx), q(a.y, qy), q(a.z, qz)};
+        const std::uint16_t to[3] = {q(e.x, qx), q(e.y, qy), q(e.z, qz)};
+        if (points.empty() || !std::equal(from, from + dims, last)) {
+            if (!points.empty()) link(0, kJump);
+            points.insert(points.end(), from, from + dims);
         }
-        widths[i] = q(s.width, widthScale);
-        colors[i] = static_cast<std::uint16_t>(s.color % paletteSize);
+        link(q(s.width, widthScale), static_cast<std::uint16_t>(s.color % paletteSize));
+        points.insert(points.end(), to, to + dims);
+        std::copy(to, to + 3, last);
         ink += inkLength(s, scene.baseWidth);
     }
+
     std::vector<std::uint32_t> palette;
     for (std::size_t k = 0; k < paletteSize; ++k)
         palette.push_back(rgbaBytes(scene.colorOf(static_cast<std::uint16_t>(k))));
@@ -391,32 +408,37 @@ std::string encodeLines(const Scene& scene) {
         addOutline(discOutline(Disc{s.centre, {0, 0, 1}, s.radius, s.color}, 24),
                    scene.colorOf(s.color));
 
-    const std::uint32_t header[4] = {0x324C4647u, static_cast<std::uint32_t>(n),
+    const std::uint32_t header[6] = {0x334C4647u,
+                                     static_cast<std::uint32_t>(n),
                                      static_cast<std::uint32_t>(triangleColors.size()),
-                                     scene.is3D ? 1u : 0u};
+                                     scene.is3D ? 1u : 0u,
+                                     static_cast<std::uint32_t>(points.size() / dims),
+                                     static_cast<std::uint32_t>(runs.size())};
     const float lineWidth = float(defaultLineWidth(ink, n > 0, b, RenderOptions{}));
-    const float extent[10] = {float(origin.x),
-                              float(origin.y),
-                              float(origin.z),
-                              float(origin.x + size.x),
-                              float(origin.y + size.y),
-                              float(origin.z + size.z),
-                              lineWidth,
-                              scene.baseWidth,
-                              maxWidth,
-                              0};
+    const float extent[9] = {float(origin.x),
+                             float(origin.y),
+                             float(origin.z),
+                             float(origin.x + size.x),
+                             float(origin.y + size.y),
+                             float(origin.z + size.z),
+                             lineWidth,
+                             scene.baseWidth,
+                             maxWidth};
     const std::uint32_t paletteCount = static_cast<std::uint32_t>(palette.size());
     std::string out;
-    out.reserve(64 + 4 * palette.size() + 2 * (positions.size() + 2 * n) + 4 +
+    out.reserve(64 + 4 * palette.size() + 2 * points.size() + 4 + 8 * runs.size() +
                 4 * (triangles.size() + triangleColors.size()));
-    appendRaw(out, header, 4);
+    appendRaw(out, header, 6);
     appendRaw(out, extent, 9);
     appendRaw(out, &paletteCount, 1);
     appendRaw(out, palette.data(), palette.size());
-    appendRaw(out, positions.data(), positions.size());
-    appendRaw(out, widths.data(), widths.size());
-    appendRaw(out, colors.data(), colors.size());
+    appendRaw(out, points.data(), points.size());
     out.append((4 - out.size() % 4) % 4, '\0');
+    for (const Run& r : runs) {
+        appendRaw(out, &r.links, 1);
+        appendRaw(out, &r.width, 1);
+        appendRaw(out, &r.color, 1);
+    }
     appendRaw(out, triangles.data(), triangles.size());
     appendRaw(out, triangleColors.data(), triangleColors.size());
     return out;

@@ -94,9 +94,10 @@ StudioPicture derivePicture(const ModelInput& input, const StudioLimits& limits,
                             const CancellationToken& cancel, const std::filesystem::path& scratch);
 
 // The scene as the 2D view and the 3D line view read it (docs/studio.md lays it out):
-// a 56-byte header, the palette, then segments (x y x y, or x y z x y z in a 3D scene, as
-// 16-bit fractions of the bounding box), 16-bit widths and palette indices, and filled
-// triangles (9 floats each) with their RGBA colours.
+// a 64-byte header, the palette, then the segments as polylines (each point once: x y, or
+// x y z in a 3D scene, as 16-bit fractions of the bounding box; runs of links with their
+// 16-bit width and palette index, or a jump), and filled triangles (9 floats each) with
+// their RGBA colours.
 std::string encodeLines(const Scene& scene);
 
 // The picture's mesh (stems as tubes, polygons, surfaces) as glTF binary: repeated organs

@@ -397,7 +397,10 @@ struct StudioServer::Impl {
                    guarded([this](const httplib::Request& req, httplib::Response& res) {
                        const std::string rel = req.get_param_value("path");
                        const fs::path path = root.resolve(rel, true);
-                       const std::int64_t mtime = modificationTime(path);
+                       // Redrawn when the model or its view file changes.
+                       const fs::path view = viewFileOf(path);
+                       const std::int64_t mtime =
+                           modificationTime(path) + (view.empty() ? 1 : modificationTime(view));
                        std::lock_guard lock(thumbnailMutex);
                        // The live view first: a thumbnail waits (a while) for its derivations.
                        for (int i = 0; i < 200 && liveRequests > 0 && !stopping; ++i)

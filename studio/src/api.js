@@ -60,28 +60,42 @@ export async function derive(model) {
   return { meta, bytes, lines: decodeLines(buffer, start) };
 }
 
-// The line buffer (docs/studio.md): header (magic, segments, triangles, flags; bounds,
-// line width, base width, widest segment; palette size), the RGBA palette, end points as
-// 16-bit fractions of the bounds (4 a segment, 6 in 3D), 16-bit widths and palette
-// indices, then triangles (9 floats) with RGBA bytes.
+// The line buffer (docs/studio.md): header (magic, segments, triangles, flags, points,
+// runs; bounds, line width, base width, widest segment; palette size), the RGBA palette,
+// the polylines' points as 16-bit fractions of the bounds (x y, or x y z in 3D), runs of
+// links (count, 16-bit width and palette index; index 0xFFFF a jump), then triangles (9
+// floats) with RGBA bytes. The runs are unpacked here into two end points, a width and a
+// colour per segment, as the views draw them.
 export function decodeLines(buffer, start) {
-  const head = new Uint32Array(buffer, start, 4);
-  if (head[0] !== 0x324c4647) throw new Error('not a graftal line buffer');
-  const n = head[1], t = head[2];
-  const floats = new Float32Array(buffer, start + 16, 9);
-  const paletteCount = new Uint32Array(buffer, start + 52, 1)[0];
-  let at = start + 56;
+  const head = new Uint32Array(buffer, start, 6);
+  if (head[0] !== 0x334c4647) throw new Error('not a graftal line buffer');
+  const n = head[1], t = head[2], pointCount = head[4], runCount = head[5];
+  const floats = new Float32Array(buffer, start + 24, 9);
+  const paletteCount = new Uint32Array(buffer, start + 60, 1)[0];
+  let at = start + 64;
   const palette = new Uint8Array(buffer, at, 4 * paletteCount); at += 4 * paletteCount;
-  const stride = head[3] & 1 ? 6 : 4;  // x y (z) of both ends
-  const positions = new Uint16Array(buffer, at, stride * n); at += 2 * stride * n;
-  const widths = new Uint16Array(buffer, at, n); at += 2 * n;
-  const colors = new Uint16Array(buffer, at, n); at += 2 * n;
+  const is3D = (head[3] & 1) === 1, dims = is3D ? 3 : 2, stride = 2 * dims;
+  const points = new Uint16Array(buffer, at, dims * pointCount); at += 2 * dims * pointCount;
   at += (4 - (at % 4)) % 4;
+  const runs = new DataView(buffer, at, 8 * runCount); at += 8 * runCount;
+  const positions = new Uint16Array(stride * n), widths = new Uint16Array(n), colors = new Uint16Array(n);
+  let point = 0, k = 0;
+  for (let r = 0; r < runCount; ++r) {
+    const links = runs.getUint32(8 * r, true), width = runs.getUint16(8 * r + 4, true), color = runs.getUint16(8 * r + 6, true);
+    if (color === 0xffff) { point += links; continue; }
+    widths.fill(width, k, k + links);
+    colors.fill(color, k, k + links);
+    // Both ends of each link: the points from `point` on, each shared by two segments.
+    for (let j = 0; j < links; ++j, ++k, ++point) {
+      const from = dims * point, to = stride * k;
+      for (let c = 0; c < stride; ++c) positions[to + c] = points[from + c];
+    }
+  }
   const triangles = new Float32Array(buffer, at, 9 * t); at += 36 * t;
   const triangleColors = new Uint8Array(buffer, at, 4 * t);
   const min = [floats[0], floats[1], floats[2]], max = [floats[3], floats[4], floats[5]];
   return {
-    segments: n, triangleCount: t, is3D: (head[3] & 1) === 1, stride, min, max,
+    segments: n, triangleCount: t, is3D, stride, min, max,
     // A quantized coordinate q stands for min + q * step.
     step: [0, 1, 2].map((k) => (max[k] - min[k]) / 65535),
     lineWidth: floats[6], baseWidth: floats[7], widthStep: floats[8] / 65535,
