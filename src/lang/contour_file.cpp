@@ -46,8 +46,17 @@ class ContourReader {
     // The next line with words on it (its words), or fails naming `expected`.
     const std::vector<Word>& line(const std::string& expected) {
         while (next_ < lines_.size() && lines_[next_].empty()) ++next_;
-        if (next_ >= lines_.size())
-            fail(lines_.size(), 1, "expected " + expected + ", found the end of the file");
+        if (next_ >= lines_.size()) {
+            // Said at the end of the last line with words on it.
+            std::size_t last = lines_.size();
+            while (last > 0 && lines_[last - 1].empty()) --last;
+            int column = 1;
+            if (last > 0) {
+                const Word& w = lines_[last - 1].back();
+                column = w.column + static_cast<int>(w.text.size());
+            }
+            fail(last, column, "expected " + expected + ", found the end of the file");
+        }
         return lines_[next_++];
     }
     bool atEnd() {
@@ -145,6 +154,7 @@ void readOldLayout(ContourReader& in, const std::vector<Word>& first, Contour& c
 
 void readVersioned(ContourReader& in, int version, Contour& c) {
     std::vector<Word> name = in.keyed("name:", 0);
+    c.name.clear();
     for (const Word& w : name) c.name += (c.name.empty() ? "" : " ") + std::string(w.text);
     std::vector<Word> points = in.keyed("points:", 2);
     int lines = in.count(points[0], "the number of point lines", 1);
