@@ -132,7 +132,8 @@ def model_folders(root):
 
 def error_kind(message):
     """The message without its file:line:column, so that equal causes group together."""
-    return re.sub(r'^[^ ]*:\d+(:\d+)?: ', '', message)[:120]
+    message = re.sub(r' [(][0-9.]+ % drawn[)]', '', message)
+    return re.sub(r'^[^ ]*:[0-9]+(:[0-9]+)?: ', '', message)[:120]
 
 
 def table(rows, root):
