@@ -148,7 +148,7 @@ struct TurtleState {
     std::uint16_t color = 0;
     std::uint32_t lastSegment = kNoSegment;  // the axis a new segment continues
     // The elasticity of the `tropism direction:` tropism; a branch keeps its own (cpfg).
-    float elasticity = 0;
+    double elasticity = 0;
 };
 
 // a' = a cos + b sin, b' = b cos - a sin: turns a toward b.
@@ -189,7 +189,7 @@ class TurtleMachine {
         // Elasticity is the turtle's: `_` changes it as the string is read (cpfg).
         if (v.tropism) {
             tropism_ = *v.tropism;
-            state_.elasticity = static_cast<float>(v.elasticity);
+            state_.elasticity = v.elasticity;
             hasTropism_ = true;
         }
         // cpfg's movements before every move: the tropisms' sum and the torque.
@@ -451,8 +451,7 @@ class TurtleMachine {
                 break;
             case TurtleOp::Elasticity:
                 state_.elasticity =
-                    args.empty() ? static_cast<float>(state_.elasticity + view_.elasticityIncrement)
-                                 : static_cast<float>(args[0]);
+                    args.empty() ? state_.elasticity + view_.elasticityIncrement : args[0];
                 break;
             case TurtleOp::ColorPrevious:
                 if (!args.empty())
