@@ -211,7 +211,7 @@ TEST(ViewSettings, BadValuesAreRejectedWithTheirPlace) {
               "test.l:2:16: error: field of view must be between 0 and 180 degrees");
     EXPECT_EQ(parseError("Lsystem: 1\nlight direction: 0 0 0\naxiom: F\n"),
               "test.l:2:18: error: the light direction must not be zero");
-    EXPECT_EQ(
-        parseError("Lsystem: 1\nsurface: l\naxiom: F\n"),
-        "test.l:2:10: error: expected 'surface: NAME FILE [SCALE]', e.g. 'surface: l leaf.s 0.5'");
+    EXPECT_EQ(parseError("Lsystem: 1\nsurface: l\naxiom: F\n"),
+              "test.l:2:10: error: expected 'surface: NAME FILE [SCALE [S T [TEXTURE]]]', e.g. "
+              "'surface: l leaf.s 0.5'");
 }

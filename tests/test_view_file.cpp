@@ -65,8 +65,9 @@ TEST(ViewFile, EachSettingReachesTheView) {
     EXPECT_EQ(v.tropisms[0].direction, (Vec3{0, -1, 0})) << "normalised";
     EXPECT_DOUBLE_EQ(v.tropisms[0].elasticity, 0.25);
     EXPECT_FALSE(v.tropism) << "not the book's tropism after each segment";
-    EXPECT_EQ(v.torque, (Vec3{1, 0, 0}));
-    EXPECT_DOUBLE_EQ(v.torqueElasticity, 0.5);
+    ASSERT_EQ(v.torques.size(), 1u) << "`torque:` lines add up, like `tropism:` lines";
+    EXPECT_EQ(v.torques[0].direction, (Vec3{1, 0, 0}));
+    EXPECT_DOUBLE_EQ(v.torques[0].elasticity, 0.5);
 }
 
 TEST(ViewFile, TheViewFileWinsOverTheLFile) {

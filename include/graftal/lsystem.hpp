@@ -39,12 +39,15 @@ struct SuccessorModule {
 // production's formal parameters live in the L-system's state (LSystem::stateNames).
 struct Statement {
     enum class Kind {
-        Assign,         // state[target] = value
-        AssignElement,  // state[address] = value (an array element)
-        Evaluate,       // value, for its effect (printf)
-        If,             // if (value) body else elseBody
-        While,          // while (value) body
-        DoWhile,        // do body while (value)
+        Assign,           // state[target] = value
+        AssignElement,    // state[address] = value (an array element)
+        AssignParameter,  // the production's parameter number `target` = value (cpfg: a
+                          // block may change a parameter; the condition, later statements
+                          // and the successor see the new value)
+        Evaluate,         // value, for its effect (printf)
+        If,               // if (value) body else elseBody
+        While,            // while (value) body
+        DoWhile,          // do body while (value)
     };
     Kind kind = Kind::Evaluate;
     std::uint32_t target = 0;

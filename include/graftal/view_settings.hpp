@@ -55,9 +55,15 @@ struct ViewSettings {
     int initialColor = 0;                        // the colour index before any ; or ,
     int colorIncrement = 1;                      // what ; adds and , subtracts
     LineStyle lineStyle = LineStyle::Cylinders;  // how 3D outputs draw segments
+    // cpfg's `cylinder sides:`: the corners of a 3D stem's cross-section (the command
+    // line's --tube-sides wins when given).
+    std::optional<int> tubeSides;
     // Tropism (LSFP ch. 3.1): after each segment H turns toward `tropism` by e·|H × T|.
     std::optional<Vec3> tropism;
     double elasticity = 0;
+    // cpfg's `elasticity increment:`: what `_` adds to the turtle's elasticity (`_(e)` sets
+    // it); a branch keeps the elasticity it had at `[`.
+    double elasticityIncrement = 0;
     // `tropism direction:` read from a cpfg view file: cpfg's rule after each segment, H
     // pitches toward T (by the angle whose sine is e·T·U) and then turns toward it (sine
     // e·T·L), instead of the book's rotation about H × T.
@@ -73,13 +79,22 @@ struct ViewSettings {
     // vector turns toward the part of e·T across H, by min(1, |U × that|) radians.
     std::optional<Vec3> torque;
     double torqueElasticity = 0;
+    // A view file's `torque: T: x,y,z E: e` lines: the turtle rolls by their sum Σ e·T
+    // (with the torque above), as the `tropism:` lines add up.
+    std::vector<Movement> torques;
     // Camera and light for pictures of 3D scenes (cpfg's view-file names).
     std::optional<Vec3> viewpoint, viewReferencePoint, upVector, lightDirection;
+    // A view file's first `light:` line: D: (diffuse) the sun's strength, A: (ambient) the
+    // sky's; the ray tracer's full sun (0.9) is D: 1 1 1.
+    std::optional<double> lightIntensity, skyIntensity;
     std::optional<double> fieldOfView;  // degrees
     bool parallelProjection = false;
     double twistDegrees = 0;  // turns the camera about its viewing direction
     std::optional<Rgb> background;
-    std::string colorMap;        // a cpfg .map file, relative to the L-system file
+    std::string colorMap;  // a cpfg .map file, relative to the L-system file
+    // A cpfg .mat file (relative to the L-system file): its diffuse colours are the 3D
+    // palette, as cpfg draws with materials instead of the colour map when given one.
+    std::string materialFile;
     int splineSubdivisions = 0;  // > 0: draw turtle paths as B-splines (LSFP Fig 2.10)
     std::vector<SurfaceDeclaration> surfaces;
     SplineMode splineMode = SplineMode::Segments;  // `spline: path` draws kolams (LSFP 6.2)
@@ -95,9 +110,12 @@ std::ostream& operator<<(std::ostream& os, const ViewSettings& v);
 
 // True when tropisms or a torque change the turtle's path (no shortcut may skip them).
 inline bool turtleIsBent(const ViewSettings& v) {
-    if (v.tropism && v.elasticity != 0) return true;
+    // A tropism direction bends the path as soon as `_` gives the turtle an elasticity.
+    if (v.tropism) return true;
     if (v.torque && v.torqueElasticity != 0) return true;
     for (const auto& m : v.tropisms)
+        if (m.elasticity != 0) return true;
+    for (const auto& m : v.torques)
         if (m.elasticity != 0) return true;
     return false;
 }

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <filesystem>
 #include <iostream>
 
 namespace graftal::cli {
@@ -64,7 +65,8 @@ int AnimateCommand::run(const InputOptions& in) {
     AnimationRequest request = request_;
     static_cast<DeriveRequest&>(request) = deriveRequest(in);
     request.output = output_;
-    request.sourceFile = in.file;
+    // A model folder's files are beside its .l, the model's own file.
+    if (!std::filesystem::is_directory(in.file)) request.sourceFile = in.file;
     request.to = to_;
     if (frames_) request.lastFrames = *frames_;
     if (!size_.empty()) parseImageSize(size_, request.picture.width, request.picture.height);

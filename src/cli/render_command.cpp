@@ -2,6 +2,7 @@
 // the rest (streaming, line art or ray tracing, surfaces, camera).
 #include <unistd.h>
 
+#include <filesystem>
 #include <optional>
 
 #include "commands.hpp"
@@ -49,7 +50,9 @@ int runRender(const InputOptions& in, const RenderCommandOptions& out) {
                              out.output + " names its format");
         request.output = out.output;
     }
-    request.sourceFile = in.file == "-" ? std::string() : in.file;
+    // A model folder's files are beside its .l, the model's own file.
+    request.sourceFile =
+        in.file == "-" || std::filesystem::is_directory(in.file) ? std::string() : in.file;
     request.picture = out.render;
     if (out.backgroundGiven) request.background = out.render.background;
     if (!out.view.empty()) {

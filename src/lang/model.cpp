@@ -131,8 +131,8 @@ std::vector<std::filesystem::path> filesEndingWith(const std::filesystem::path& 
 }  // namespace
 
 // What cpfg is given beside the .l and .v on its command line, found in a model folder:
-// its one colour map (.map), unless the model names one, and its one function set (.fset),
-// unless the view file names functions.
+// its one colour map (.map) and its one material file (.mat), unless the model names one,
+// and its one function set (.fset), unless the view file names functions.
 namespace {
 
 void addFolderFiles(const std::filesystem::path& folder, ParseResult& result) {
@@ -140,6 +140,9 @@ void addFolderFiles(const std::filesystem::path& folder, ParseResult& result) {
     auto maps = filesEndingWith(folder, ".map");
     if (model.view.colorMap.empty() && maps.size() == 1)
         model.view.colorMap = maps[0].filename().string();
+    auto materials = filesEndingWith(folder, ".mat");
+    if (model.view.materialFile.empty() && materials.size() == 1)
+        model.view.materialFile = materials[0].filename().string();
     auto sets = filesEndingWith(folder, ".fset");
     if (sets.size() != 1 || !model.lsystem.functions.empty()) return;
     std::string text;

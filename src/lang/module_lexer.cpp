@@ -44,6 +44,12 @@ bool tokenizeModules(std::string_view text, const SourceLocation& loc, int start
             std::size_t j = i + 1;
             for (; j < text.size(); ++j) {
                 char d = text[j];
+                if (d == '"') {  // a label's text: its commas and parentheses are not ours
+                    std::size_t close = text.find('"', j + 1);
+                    if (close == std::string_view::npos) break;
+                    j = close;
+                    continue;
+                }
                 if (d == '(') {
                     ++depth;
                 } else if (d == ')') {
@@ -63,6 +69,14 @@ bool tokenizeModules(std::string_view text, const SourceLocation& loc, int start
             bool blank = last.find_first_not_of(" \t") == std::string::npos;
             if (!(blank && m.args.empty()))
                 m.args.push_back({std::move(last), startColumn + static_cast<int>(argStart)});
+            // cpfg's label @L("format", values...): its text is drawn, never computed with.
+            // graftal draws no labels, so the text is dropped and the values stay.
+            const bool label =
+                m.symbol == 'L' && out.size() >= 2 && out[out.size() - 2].symbol == '@';
+            std::erase_if(m.args, [&](const ArgumentText& a) {
+                std::size_t k = a.text.find_first_not_of(" \t");
+                return label && k != std::string::npos && a.text[k] == '"';
+            });
             for (const auto& a : m.args) {
                 if (a.text.find_first_not_of(" \t") == std::string::npos) {
                     diags.error(where(static_cast<std::size_t>(a.column - startColumn)),

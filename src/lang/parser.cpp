@@ -73,6 +73,7 @@ const std::vector<std::string> kKeywords = {
     "elasticity",
     "color map",
     "colour map",
+    "material file",
     "surface",
     "spline subdivisions",
     "spline",

@@ -248,7 +248,7 @@ class StatementParser {
                 Statement s;
                 s.kind = Statement::Kind::Assign;
                 std::string name(word);
-                if (!assignable(name, pos_, s.target)) return;
+                if (!assignable(name, pos_, s.kind, s.target)) return;
                 s.value = compile(after + 1, end);
                 if (failed_) return;
                 pos_ = end + 1;
@@ -264,16 +264,18 @@ class StatementParser {
         out.push_back(std::move(s));
     }
 
-    // The state slot `name` writes to; a new slot when the name is new.
-    bool assignable(const std::string& name, std::size_t at, std::uint32_t& slot) {
+    // The slot `name` writes to: the production's parameter of that name (cpfg lets a
+    // block change it for the rest of the production), else a state slot, new when the
+    // name is new.
+    bool assignable(const std::string& name, std::size_t at, Statement::Kind& kind,
+                    std::uint32_t& slot) {
         if (scope_.formals) {
-            for (const auto& f : *scope_.formals) {
-                if (f == name) {
-                    fail(at, "'" + name +
-                                 "' is a parameter of the production; assign to a new variable "
-                                 "instead");
-                    return false;
-                }
+            const auto& formals = *scope_.formals;
+            auto it = std::find(formals.begin(), formals.end(), name);
+            if (it != formals.end()) {
+                kind = Statement::Kind::AssignParameter;
+                slot = static_cast<std::uint32_t>(it - formals.begin());
+                return true;
             }
         }
         if (name == "Q" || name == "Z") {

@@ -15,7 +15,17 @@ namespace graftal {
 
 namespace {
 
-enum class Kind { Number, Vector, Text, Twist, Tropism, Torque, Ignored };
+enum class Kind {
+    Number,
+    Vector,
+    Text,
+    Twist,
+    PolygonizationLevel,
+    Tropism,
+    Torque,
+    Light,
+    Ignored
+};
 
 struct ViewLine {
     const char* cpfgName;  // lower case, without the ':'
@@ -43,17 +53,19 @@ const std::vector<ViewLine>& viewLines() {
         {"scale factor", "scale factor", Kind::Number},
         {"tropism direction", "cpfg tropism direction", Kind::Vector},
         {"initial elasticity", "initial elasticity", Kind::Number},
-        {"elasticity increment", "changing elasticities are not drawn yet", Kind::Ignored},
+        {"elasticity increment", "elasticity increment", Kind::Number},
         {"tropism", "tropism", Kind::Tropism},
         {"torque", "torque", Kind::Torque},
         {"surface", "surface", Kind::Text},
         {"box", "the box is recomputed from the geometry", Kind::Ignored},
         {"render mode", "graftal chooses how to draw by the output format", Kind::Ignored},
-        {"light", "lights are not read from view files yet", Kind::Ignored},
+        {"light", "light", Kind::Light},
         {"material", "materials are not read from view files yet", Kind::Ignored},
         {"shade mode", "graftal chooses the shading by the output format", Kind::Ignored},
         {"z buffer", "graftal chooses how to draw by the output format", Kind::Ignored},
-        {"cylinder sides", "use --tube-sides", Kind::Ignored},
+        {"cylinder sides", "cylinder sides", Kind::Number},
+        {"polygonization level", "cylinder sides", Kind::PolygonizationLevel},
+        {"light direction", "light direction", Kind::Vector},
         {"contact point", "contact points are not read yet", Kind::Ignored},
         {"end point", "end points are not read yet", Kind::Ignored},
         {"heading", "headings are not read yet", Kind::Ignored},
@@ -93,7 +105,7 @@ class ViewFileReader {
         std::size_t first = 0;
         while (first < text.size() && isBlank(text[first])) ++first;
         if (first == text.size()) return;
-        if (text.substr(first).starts_with("/*") || text.substr(first).starts_with("//")) return;
+        if (text.substr(first).starts_with("//")) return;
         std::string name = colon == std::string_view::npos
                                ? std::string()
                                : lower(text.substr(first, colon - first));
@@ -115,7 +127,17 @@ class ViewFileReader {
                 return;
             case Kind::Number: {
                 auto d = number(value, known->cpfgName);
+                // cpfg's scale factor is the share of the window the picture fills (0.9);
+                // graftal's, as pfg's, is in percent.
+                if (d && name == "scale factor") *d *= 100;
                 if (d) send(known->setting, *d, value);
+                return;
+            }
+            case Kind::PolygonizationLevel: {
+                // cpfg: the stems' sides are 2^(level + 1), at least 3.
+                auto d = number(value, known->cpfgName);
+                if (d)
+                    send(known->setting, std::max(3.0, std::round(std::pow(2.0, *d + 1))), value);
                 return;
             }
             case Kind::Twist: {
@@ -135,6 +157,9 @@ class ViewFileReader {
             case Kind::Tropism:
             case Kind::Torque:
                 fields(value, known->setting);
+                return;
+            case Kind::Light:
+                light(value);
                 return;
         }
     }
@@ -234,13 +259,69 @@ class ViewFileReader {
             diags_.error(at(start, text_.size()), "'" + setting + ":' needs a direction T: x,y,z");
             return;
         }
-        // Each `tropism:` line adds one to the others; `torque:` sets the one torque.
-        std::string name = setting == "tropism" ? std::string("tropism line") : setting;
+        // Each `tropism:` and `torque:` line adds one to the others of its kind.
+        std::string name = setting + " line";
         send(name + " direction", *direction, start);
         send(name + " elasticity", elasticity.value_or(0), start);
         if (step && *step != 0)
             diags_.warning(at(start, text_.size()),
                            "'" + setting + ":' S: (elasticity step) is read but not drawn yet");
+    }
+
+    // cpfg's `light:` lines: fields V: x,y,z (a light far away in that direction) or O: x,y,z
+    // (a light at that point), A:, D:, S: r g b (ambient, diffuse, specular) and P: (a
+    // spot's five numbers), the colon optional. graftal's ray tracer has one sun and a sky:
+    // the first light gives the sun's direction (towards O: seen from the origin), its
+    // strength (D:) and the sky's (A:); later lights are warned and not drawn.
+    void light(std::size_t from) {
+        if (++lights_ > 1) {
+            diags_.warning(at(from, text_.size()),
+                           "'light:' after the first is read but not drawn: graftal's ray "
+                           "tracer has one sun");
+            return;
+        }
+        std::size_t start = from;
+        while (from < text_.size()) {
+            while (from < text_.size() && (isBlank(text_[from]) || text_[from] == ',')) ++from;
+            if (from >= text_.size()) break;
+            char field = static_cast<char>(std::toupper(static_cast<unsigned char>(text_[from])));
+            std::size_t after = from + 1;
+            if (std::string("VOADSP").find(field) == std::string::npos ||
+                (after < text_.size() && !isBlank(text_[after]) && text_[after] != ':' &&
+                 !std::isdigit(static_cast<unsigned char>(text_[after])) && text_[after] != '-' &&
+                 text_[after] != '.')) {
+                diags_.error(at(from, tokenEnd(from)),
+                             "'light:' expects fields V: x,y,z or O: x,y,z, and A:, D:, S: "
+                             "r g b, P: (a spot's five numbers)");
+                return;
+            }
+            from = after;
+            while (from < text_.size() && isBlank(text_[from])) ++from;
+            if (from < text_.size() && text_[from] == ':') ++from;
+            if (field == 'P') {
+                for (int k = 0; k < 5; ++k) {
+                    if (!numberAt(from, "light", "five numbers after P:")) return;
+                    while (from < text_.size() && (isBlank(text_[from]) || text_[from] == ','))
+                        ++from;
+                }
+                diags_.warning(at(start, text_.size()),
+                               "'light:' P: (a spot light) is read but not drawn");
+                continue;
+            }
+            auto v = vectorAt(from, "light");
+            if (!v) return;
+            if (field == 'V' || field == 'O') {
+                if (v->x == 0 && v->y == 0 && v->z == 0) {
+                    diags_.error(at(start, text_.size()), "'light:' direction must not be zero");
+                    return;
+                }
+                send("light direction", *v, start);
+            } else if (field == 'D') {
+                send("light intensity", (v->x + v->y + v->z) / 3, start);
+            } else if (field == 'A') {
+                send("sky intensity", (v->x + v->y + v->z) / 3, start);
+            }
+        }
     }
 
     void send(const std::string& name, std::variant<double, Vec3, std::string> value,
@@ -255,12 +336,33 @@ class ViewFileReader {
     DiagnosticList& diags_;
     std::string_view text_;
     int number_ = 0;
+    int lights_ = 0;  // `light:` lines seen
 };
+
+// The view file with its comments (`/* ... */`, also over several lines) turned into
+// blanks, newlines kept so that lines and columns stay the user's. cpfg skips them where
+// it looks for a setting's name, and models comment settings out and write notes after
+// values ("line style: cylinder /* pixel, polygon or cylinder */").
+std::string blankComments(std::string_view text) {
+    std::string out(text);
+    for (std::size_t i = 0; i + 1 < out.size(); ++i) {
+        if (out[i] == '/' && out[i + 1] == '*') {
+            std::size_t end = out.find("*/", i + 2);
+            end = end == std::string::npos ? out.size() : end + 2;
+            for (std::size_t k = i; k < end; ++k)
+                if (out[k] != '\n') out[k] = ' ';
+            i = end - 1;
+        }
+    }
+    return out;
+}
 
 }  // namespace
 
-void parseViewFileInto(std::string_view text, const std::string& fileName, ParserTarget& target,
+void parseViewFileInto(std::string_view original, const std::string& fileName, ParserTarget& target,
                        DiagnosticList& diagnostics) {
+    const std::string blanked = blankComments(original);
+    std::string_view text = blanked;
     ViewFileReader reader(fileName, target, diagnostics);
     int number = 0;
     std::size_t at = 0;

@@ -71,8 +71,8 @@ bool Parser::parseViewSetting(const SourceLine& line, const std::string& kw,
         setting.value = v;
     } else if (kw == "projection" || kw == "line style" || kw == "background" ||
                kw == "color map" || kw == "colour map" || kw == "surface" || kw == "spline" ||
-               kw == "kolam dots" || kw == "music scale" || kw == "music root" ||
-               kw == "music axis") {
+               kw == "material file" || kw == "kolam dots" || kw == "music scale" ||
+               kw == "music root" || kw == "music axis") {
         setting.value = std::string(value);
     } else {
         double d = 0;

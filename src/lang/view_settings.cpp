@@ -29,13 +29,25 @@ std::string applySurface(ViewSettings& view, const std::string& text, const Sour
         }
     }
     if (!cur.empty()) words.push_back(cur);
-    if (words.size() < 2 || words.size() > 3)
-        return "expected 'surface: NAME FILE [SCALE]', e.g. 'surface: l leaf.s 0.5'";
+    // cpfg's view files add the patches' s and t subdivisions and a texture number after
+    // the scale: `surface: b bud.s 300 2 2`. graftal subdivides patches by itself, so they
+    // are read and checked, not used.
+    if (words.size() < 2 || words.size() > 6)
+        return "expected 'surface: NAME FILE [SCALE [S T [TEXTURE]]]', e.g. 'surface: l leaf.s "
+               "0.5'";
     SurfaceDeclaration s{words[0], words[1], 1, where};
-    if (words.size() == 3) {
+    if (words.size() >= 3) {
         char* end = nullptr;
         s.scale = std::strtod(words[2].c_str(), &end);
         if (*end || !(s.scale > 0)) return "the surface scale must be a positive number";
+    }
+    for (std::size_t k = 3; k < words.size(); ++k) {
+        char* end = nullptr;
+        long n = std::strtol(words[k].c_str(), &end, 10);
+        if (*end || n < -1)
+            return "after the surface scale come whole numbers: the s and t subdivisions and "
+                   "a texture, not '" +
+                   words[k] + "'";
     }
     view.surfaces.push_back(std::move(s));
     return "";
@@ -102,6 +114,10 @@ const std::vector<std::string>& viewSettingNames() {
         "tropism elasticity",
         "initial elasticity",
         "elasticity",
+        "elasticity increment",
+        "cylinder sides",
+        "light intensity",
+        "sky intensity",
         "projection",
         "field of view",
         "line style",
@@ -111,6 +127,7 @@ const std::vector<std::string>& viewSettingNames() {
         "background",
         "color map",
         "colour map",
+        "material file",
         "surface",
         "line width increment",
         "initial color",
@@ -138,7 +155,8 @@ std::string applyViewSetting(ViewSettings& view, const ViewSetting& setting) {
     const std::string* text = std::get_if<std::string>(&setting.value);
     if (kw == "viewpoint" || kw == "view reference point" || kw == "up vector" ||
         kw == "light direction" || kw == "tropism direction" || kw == "torque direction" ||
-        kw == "cpfg tropism direction" || kw == "tropism line direction") {
+        kw == "cpfg tropism direction" || kw == "tropism line direction" ||
+        kw == "torque line direction") {
         if (!vector) return "'" + kw + ":' expects three numbers x, y, z";
         const Vec3& v = *vector;
         if (kw == "viewpoint") {
@@ -157,6 +175,8 @@ std::string applyViewSetting(ViewSettings& view, const ViewSetting& setting) {
             Vec3 unit{v.x / n, v.y / n, v.z / n};
             if (kw == "tropism line direction")
                 view.tropisms.push_back({unit, 0});
+            else if (kw == "torque line direction")
+                view.torques.push_back({unit, 0});
             else
                 (kw == "torque direction" ? view.torque : view.tropism) = unit;
             if (kw == "cpfg tropism direction") view.cpfgTropism = true;
@@ -169,7 +189,7 @@ std::string applyViewSetting(ViewSettings& view, const ViewSetting& setting) {
         return applyWordSetting(view, kw, *text);
     }
     if (kw == "projection" || kw == "line style" || kw == "background" || kw == "color map" ||
-        kw == "colour map" || kw == "surface") {
+        kw == "colour map" || kw == "surface" || kw == "material file") {
         if (!text) return "'" + kw + ":' expects a word or a file name, not a number";
         std::string word = lowerCase(*text);
         if (kw == "projection") {
@@ -196,13 +216,17 @@ std::string applyViewSetting(ViewSettings& view, const ViewSetting& setting) {
                 Rgb{((c >> 16) & 255) / 255.0f, ((c >> 8) & 255) / 255.0f, (c & 255) / 255.0f};
         } else if (kw == "surface") {
             return applySurface(view, *text, setting.location);
+        } else if (kw == "material file") {
+            if (text->empty()) return "expected a .mat file name";
+            view.materialFile = *text;
         } else {
             if (text->empty()) return "expected a .map file name";
             view.colorMap = *text;
         }
         return "";
     }
-    bool known = kw == "tropism line elasticity";  // the view file's `tropism:` lines
+    // the view file's `tropism:` and `torque:` lines
+    bool known = kw == "tropism line elasticity" || kw == "torque line elasticity";
     for (const auto& n : viewSettingNames()) known = known || n == kw;
     if (!known) return "unknown view setting '" + kw + "'";
     if (!number) return "'" + kw + ":' expects a number";
@@ -247,8 +271,20 @@ std::string applyViewSetting(ViewSettings& view, const ViewSetting& setting) {
     } else if (kw == "tropism line elasticity") {
         if (view.tropisms.empty()) return "an elasticity without a tropism direction";
         view.tropisms.back().elasticity = d;
+    } else if (kw == "torque line elasticity") {
+        if (view.torques.empty()) return "an elasticity without a torque direction";
+        view.torques.back().elasticity = d;
     } else if (kw == "torque elasticity") {
         view.torqueElasticity = d;
+    } else if (kw == "elasticity increment") {
+        view.elasticityIncrement = d;
+    } else if (kw == "light intensity" || kw == "sky intensity") {
+        if (d < 0 || d > 10) return kw + " must be from 0 to 10";
+        (kw == "light intensity" ? view.lightIntensity : view.skyIntensity) = d;
+    } else if (kw == "cylinder sides") {
+        if (d < 3 || d > 1024 || d != std::floor(d))
+            return "cylinder sides is a whole number from 3 to 1024 (the corners around a stem)";
+        view.tubeSides = static_cast<int>(d);
     } else if (kw == "music tempo") {
         if (d <= 0 || d > 1000) return "music tempo is beats per minute, above 0 and at most 1000";
         view.music.tempo = d;

@@ -15,6 +15,7 @@
 #include "graftal/derivation.hpp"
 #include "graftal/derivation_diagram.hpp"
 #include "graftal/framed_picture.hpp"
+#include "graftal/material_file.hpp"
 #include "graftal/mesh.hpp"
 #include "graftal/projection.hpp"
 #include "graftal/render3d.hpp"
@@ -373,8 +374,14 @@ AnimationResult animate(const Model& model, const AnimationRequest& request,
     for (const auto& s : scenes)
         if (s) sceneBounds.extend(s->bounds());
     SurfaceLibrary surfaces = surfacesFor(model.view, sequence.folder());
+    std::optional<std::vector<Rgb>> materials;
+    if (!model.view.materialFile.empty())
+        materials = materialPalette(loadMaterials(sequence.folder() / model.view.materialFile));
     MeshOptions mo;
-    mo.tubeSides = request.tubeSides;
+    // The view file's `cylinder sides:` unless --tube-sides was given.
+    mo.tubeSides = request.tubeSides != AnimationRequest{}.tubeSides
+                       ? request.tubeSides
+                       : model.view.tubeSides.value_or(request.tubeSides);
     mo.surfaceDivisions = request.surfaceDivisions;
     mo.cylinders = model.view.lineStyle == LineStyle::Cylinders;
     // Thin stems as in render(), for the pixel size of the camera framed on every frame.
@@ -387,6 +394,7 @@ AnimationResult animate(const Model& model, const AnimationRequest& request,
         request.cancel.check();
         Scene& scene = *scenes[k];
         if (model.view.colorMap.empty()) scene.palette = defaultPalette3D();
+        if (materials) scene.palette = *materials;
         meshes[k] = buildMeshScene(scene, mo, &surfaces);
         scene = Scene{};
         all.extend(meshes[k]->bounds());

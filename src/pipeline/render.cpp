@@ -10,6 +10,7 @@
 #include "graftal/file_format.hpp"
 #include "graftal/framed_picture.hpp"
 #include "graftal/kolam.hpp"
+#include "graftal/material_file.hpp"
 #include "graftal/mesh.hpp"
 #include "graftal/mesh_scene.hpp"
 #include "graftal/pipeline.hpp"
@@ -89,6 +90,8 @@ RaytraceOptions raytraceOptions(const ViewSettings& v, const RenderRequest& requ
     if (auto light = request.light ? request.light : v.lightDirection)
         r.lighting.sunDirection = *light;
     r.ground = request.ground;
+    if (v.lightIntensity) r.lighting.sunIntensity = 0.9 * *v.lightIntensity;
+    if (v.skyIntensity) r.lighting.skyIntensity = *v.skyIntensity;
     return r;
 }
 
@@ -140,6 +143,14 @@ void renderDerivation(const Model& model, int steps, const RenderRequest& reques
         render.background = *model.view.background;
     request.cancel.check();
     writeDerivationDiagram(strings, model.lsystem.symbols, render, request.output);
+}
+
+// True when the string holds a label, @L: the module L right after an @.
+bool hasLabels(const ModuleString& s) {
+    const auto& symbols = s.symbols();
+    for (std::size_t i = 0; i + 1 < symbols.size(); ++i)
+        if (symbols[i] == '@' && symbols[i + 1] == 'L') return true;
+    return false;
 }
 
 void addNote(RenderResult& result, const RenderRequest& request, const Model& model,
@@ -278,8 +289,10 @@ RenderResult render(const Model& model, const RenderRequest& request) {
     const DerivationOptions derivation = derivationOptions(model, request);
     ModuleString modules = derive(model, steps, derivation);
     request.cancel.check();
-    Scene scene =
-        sceneForRender(model, applyHomomorphism(model.lsystem, modules, derivation), request);
+    ModuleString shown = applyHomomorphism(model.lsystem, modules, derivation);
+    // cpfg writes the text of @L("...") into its picture; graftal draws no text. Said once.
+    if (hasLabels(shown)) addNote(result, request, model, "labels (@L) are not drawn");
+    Scene scene = sceneForRender(model, std::move(shown), request);
     modules = ModuleString{};
     const std::filesystem::path folder = sourceFolder(model, request);
     if (!model.view.colorMap.empty()) scene.palette = loadColorMap(folder / model.view.colorMap);
@@ -318,9 +331,14 @@ RenderResult render(const Model& model, const RenderRequest& request) {
                     cameraSettingsGiven(request));
     // Uncoloured 3D plants are bark brown, not line art's ink, so their shading shows.
     if (model.view.colorMap.empty()) scene.palette = defaultPalette3D();
+    if (!model.view.materialFile.empty())
+        scene.palette = materialPalette(loadMaterials(folder / model.view.materialFile));
     SurfaceLibrary surfaces = surfacesFor(model.view, folder);
     MeshOptions mo;
-    mo.tubeSides = request.tubeSides;
+    // The view file's `cylinder sides:` unless --tube-sides was given.
+    mo.tubeSides = request.tubeSides != RenderRequest{}.tubeSides
+                       ? request.tubeSides
+                       : model.view.tubeSides.value_or(request.tubeSides);
     mo.surfaceDivisions = request.surfaceDivisions;
     mo.cylinders = model.view.lineStyle == LineStyle::Cylinders;
     if (picture) setPictureRadii(mo, scene.bounds(), raytraceOptions(model.view, request));

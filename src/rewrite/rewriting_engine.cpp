@@ -521,13 +521,16 @@ double RewritingEngine::evaluate(const Expression& e, const double* slots, Draws
     return e.evaluate(vars, &ctx);
 }
 
-void RewritingEngine::runStatements(const Block& block, const double* slots, Draws& draws) const {
+void RewritingEngine::runStatements(const Block& block, double* slots, Draws& draws) const {
     // Loops are bounded so that a model cannot hang the program.
     constexpr long kMaxIterations = 10'000'000;
     for (const Statement& st : block) {
         switch (st.kind) {
             case Statement::Kind::Assign:
                 state_[st.target] = evaluate(st.value, slots, draws, true);
+                break;
+            case Statement::Kind::AssignParameter:
+                slots[st.target] = evaluate(st.value, slots, draws, true);
                 break;
             case Statement::Kind::AssignElement: {
                 double v = evaluate(st.value, slots, draws, true);
@@ -562,7 +565,7 @@ void RewritingEngine::runStatements(const Block& block, const double* slots, Dra
     }
 }
 
-void RewritingEngine::runBlock(const Block& block, const double* slots, int stepNumber,
+void RewritingEngine::runBlock(const Block& block, double* slots, int stepNumber,
                                std::uint64_t position) const {
     if (!state_) throw Error(SourceLocation{ls_.file, 0, 0}, "blocks need the L-system's state");
     Draws draws{this, static_cast<std::uint64_t>(stepNumber), position, 1ull << 40};
@@ -594,6 +597,14 @@ std::int32_t RewritingEngine::choose(const ModuleString& s, std::size_t i, std::
             weights.assign(cands.size(), 0.0);
             double sum = 0;
             std::size_t firstApplicable = cands.size();
+            // The slots of the candidates whose pre block ran (it may change parameters),
+            // so that the chosen one's are handed back.
+            std::vector<std::vector<double>> afterPre;
+            auto keepSlots = [&](std::size_t r) {
+                afterPre.resize(cands.size());
+                afterPre[r].assign(slots, slots + maxSlots_);
+            };
+            if (!p.preBlock.empty()) keepSlots(k);
             // cpfg runs the pre block and tests the condition of every candidate.
             for (std::size_t r = k; r < cands.size(); ++r) {
                 const Production& q = productions_[cands[r]];
@@ -601,7 +612,10 @@ std::int32_t RewritingEngine::choose(const ModuleString& s, std::size_t i, std::
                 if (!q.probability) continue;
                 if (r == k && !firstApplies) continue;
                 if (!matches(q, s, i, slots)) continue;
-                if (r != k && !q.preBlock.empty()) runStatements(q.preBlock, slots, draws);
+                if (r != k && !q.preBlock.empty()) {
+                    runStatements(q.preBlock, slots, draws);
+                    keepSlots(r);
+                }
                 if (r != k && q.condition && evaluate(*q.condition, slots, draws) == 0) continue;
                 if (firstApplicable == cands.size()) firstApplicable = r;
                 double w = evaluate(*q.probability, slots, draws);
@@ -610,21 +624,27 @@ std::int32_t RewritingEngine::choose(const ModuleString& s, std::size_t i, std::
                     sum += w;
                 }
             }
+            // The chosen production's slots, as its pre block left them.
+            auto chosen = [&](std::size_t r) {
+                if (r < afterPre.size() && !afterPre[r].empty())
+                    std::copy(afterPre[r].begin(), afterPre[r].end(), slots);
+                else
+                    matches(productions_[cands[r]], s, i, slots);
+                return static_cast<std::int32_t>(cands[r]);
+            };
             // cpfg: when every applicable weight is 0, the first applicable production applies.
             if (sum <= 0)
-                return firstApplicable == cands.size()
-                           ? kIdentity
-                           : static_cast<std::int32_t>(cands[firstApplicable]);
+                return firstApplicable == cands.size() ? kIdentity : chosen(firstApplicable);
             double u =
                 uniformAt(seed_, static_cast<std::uint64_t>(stepNumber), position, 1u << 20) * sum;
             std::size_t last = k;
             for (std::size_t r = k; r < cands.size(); ++r) {
                 if (weights[r] <= 0) continue;
                 last = r;
-                if (u < weights[r]) return static_cast<std::int32_t>(cands[r]);
+                if (u < weights[r]) return chosen(r);
                 u -= weights[r];
             }
-            return static_cast<std::int32_t>(cands[last]);  // rounding left u at the top end
+            return chosen(last);  // rounding left u at the top end
         }
     } catch (const Error& err) {
         std::vector<Diagnostic> ds = err.diagnostics();
@@ -659,7 +679,7 @@ void RewritingEngine::expandOne(const ModuleString& s, std::size_t i, std::uint6
         for (const auto& m : p.successor) out.push(m.symbol);
         return;
     }
-    matches(p, s, i, scratchSlots_.data());
+    // choose() left the chosen production's parameters in the slots.
     Draws draws{this, static_cast<std::uint64_t>(stepNumber), position, 1ull << 32};
     for (const auto& m : p.successor) {
         // As many values as the module has: a module may carry any number of parameters.
@@ -953,8 +973,9 @@ bool RewritingEngine::stepSequential(const ModuleString& cur, ModuleString& next
                 continue;
             }
             any = true;
+            // choose() left the chosen production's parameters in the slots, as its pre
+            // block may have changed them.
             const Production& p = productions_[static_cast<std::size_t>(k)];
-            matches(p, cur, i, slots.data());
             Draws draws{this, static_cast<std::uint64_t>(stepNumber), i, 1ull << 32};
             if (!p.postBlock.empty()) runStatements(p.postBlock, slots.data(), draws);
             for (const auto& m : p.successor) {

@@ -40,8 +40,7 @@ class RewritingEngine {
         files_ = files;
     }
     // Runs a block of statements with `slots` bound (nullptr for Start: and the like).
-    void runBlock(const Block& block, const double* slots, int stepNumber,
-                  std::uint64_t position) const;
+    void runBlock(const Block& block, double* slots, int stepNumber, std::uint64_t position) const;
 
     bool parametric() const { return parametric_; }
     bool usesContext() const { return needBrackets_ || multiPred_; }
@@ -76,10 +75,12 @@ class RewritingEngine {
     bool stepSequential(const ModuleString& cur, ModuleString& next, int stepNumber, int table,
                         std::size_t limit, const std::vector<std::uint8_t>* activeIn,
                         std::vector<std::uint8_t>* activeOut);
-    void runStatements(const Block& block, const double* slots, Draws& draws) const;
+    void runStatements(const Block& block, double* slots, Draws& draws) const;
     bool stepGeneric(const ModuleString& cur, ModuleString& next, int stepNumber, int table,
                      std::size_t limit, const std::vector<std::uint8_t>* activeIn,
                      std::vector<std::uint8_t>* activeOut);
+    // The production that rewrites module i (kIdentity: none). On return `slots` hold the
+    // chosen production's parameters, as its pre block left them.
     std::int32_t choose(const ModuleString& s, std::size_t i, std::uint64_t position,
                         int stepNumber, int table, double* slots,
                         std::vector<double>& weights) const;

@@ -260,7 +260,8 @@ std::size_t PlanarWalk::fastRun(const ModuleString& modules, std::size_t i, std:
             case TurtleOp::None:
             case TurtleOp::ColorNext:
             case TurtleOp::ColorPrevious:
-                break;  // a colour changes no measure
+            case TurtleOp::Elasticity:  // no tropism here (turtleIsBent): bends nothing
+                break;                  // a colour changes no measure
             default:
                 goto stop;
         }
@@ -378,6 +379,7 @@ bool PlanarWalk::slowModule(TurtleOp op, ParamView args) {
         case TurtleOp::None:
         case TurtleOp::ColorNext:
         case TurtleOp::ColorPrevious:
+        case TurtleOp::Elasticity:
             return true;
         case TurtleOp::PitchDown:
         case TurtleOp::PitchUp:

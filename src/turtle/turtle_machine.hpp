@@ -53,6 +53,7 @@ enum class TurtleOp : std::uint8_t {
     ColorNext,
     ColorPrevious,
     Surface,
+    Elasticity,  // cpfg's _: adds the elasticity increment, or _(e) sets the elasticity
 };
 
 inline constexpr double kPi = 3.14159265358979323846;
@@ -107,6 +108,8 @@ inline TurtleOp opFor(Symbol s) {
             return TurtleOp::ColorNext;
         case ',':
             return TurtleOp::ColorPrevious;
+        case '_':
+            return TurtleOp::Elasticity;
         default:
             return TurtleOp::None;
     }
@@ -146,6 +149,8 @@ struct TurtleState {
     float width = 1;
     std::uint16_t color = 0;
     std::uint32_t lastSegment = kNoSegment;  // the axis a new segment continues
+    // The elasticity of the `tropism direction:` tropism; a branch keeps its own (cpfg).
+    double elasticity = 0;
 };
 
 // a' = a cos + b sin, b' = b cos - a sin: turns a toward b.
@@ -187,19 +192,19 @@ class TurtleMachine {
         rotatePair(state_.heading, state_.left, std::cos(h), std::sin(h));
         state_.width = static_cast<float>(v.initialWidth);
         state_.color = colorIndex(v.initialColor);
-        if (v.tropism && v.elasticity != 0) {
+        // Elasticity is the turtle's: `_` changes it as the string is read (cpfg).
+        if (v.tropism) {
             tropism_ = *v.tropism;
-            elasticity_ = v.elasticity;
+            state_.elasticity = v.elasticity;
             hasTropism_ = true;
         }
         // cpfg's movements before every move: the tropisms' sum and the torque.
         for (const auto& m : v.tropisms)
             movementTropism_ = movementTropism_ + m.direction * m.elasticity;
         hasMovementTropism_ = length(movementTropism_) > 0;
-        if (v.torque && v.torqueElasticity != 0) {
-            torque_ = *v.torque * v.torqueElasticity;
-            hasTorque_ = true;
-        }
+        if (v.torque) torque_ = *v.torque * v.torqueElasticity;
+        for (const auto& m : v.torques) torque_ = torque_ + m.direction * m.elasticity;
+        hasTorque_ = length(torque_) > 0;
         sink_.baseWidth(state_.width);
     }
 
@@ -295,10 +300,11 @@ class TurtleMachine {
             applyCpfgTropism();
             return;
         }
+        if (state_.elasticity == 0) return;
         Vec3 axis = cross(state_.heading, tropism_);
         double n = length(axis);
         if (n < 1e-12) return;
-        double alpha = elasticity_ * n;
+        double alpha = state_.elasticity * n;
         axis = axis * (1 / n);
         state_.heading = normalized(rotateAbout(state_.heading, axis, alpha));
         state_.left = normalized(rotateAbout(state_.left, axis, alpha));
@@ -312,8 +318,8 @@ class TurtleMachine {
             sine = std::clamp(sine, -1.0, 1.0);
             rotatePair(state_.heading, toward, std::sqrt(1 - sine * sine), sine);
         };
-        bend(state_.up, elasticity_ * dot(tropism_, state_.up));
-        bend(state_.left, elasticity_ * dot(tropism_, state_.left));
+        bend(state_.up, state_.elasticity * dot(tropism_, state_.up));
+        bend(state_.left, state_.elasticity * dot(tropism_, state_.left));
     }
 
     // cpfg's movements, before every F, G, f and g: the `tropism:` lines turn H toward
@@ -471,6 +477,10 @@ class TurtleMachine {
             case TurtleOp::ColorNext:
                 state_.color = args.empty() ? colorIndex(state_.color + view_.colorIncrement)
                                             : colorIndex(args[0]);
+                break;
+            case TurtleOp::Elasticity:
+                state_.elasticity =
+                    args.empty() ? state_.elasticity + view_.elasticityIncrement : args[0];
                 break;
             case TurtleOp::ColorPrevious:
                 if (!args.empty())
@@ -656,7 +666,6 @@ class TurtleMachine {
     std::array<TurtleOp, kMaxSymbols> ops_;
     double deltaCos_ = 1, deltaSin_ = 0, turnSign_ = 1, rollSign_ = -1;
     Vec3 tropism_{0, -1, 0};
-    double elasticity_ = 0;
     bool hasTropism_ = false;
     bool tracking_ = false;
     Bounds viewVolume_;
