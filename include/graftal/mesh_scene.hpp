@@ -63,6 +63,8 @@ struct MeshScene {
     // mirrored placement rewound so that they still face out). Curves are not included:
     // build with MeshOptions::curveRadius = 0 to get them as tubes.
     Mesh flattened() const;
+    // One placement's copy appended to `out`, as flattened() copies it.
+    void appendCopy(const MeshPlacement& placement, Mesh& out) const;
     void print(std::ostream& os) const;  // counts and bounds
 };
 

@@ -87,24 +87,26 @@ Mesh MeshScene::flattened() const {
     out.normals.reserve(vertexCount());
     out.indices.reserve(3 * triangleCount());
     out.triangleColor.reserve(triangleCount());
-    for (const MeshPlacement& p : placements) {
-        const Mesh& proto = prototypes[p.prototype];
-        const auto base = static_cast<std::uint32_t>(out.positions.size());
-        for (const Vec3f& v : proto.positions) out.positions.push_back(p.transform.point(v));
-        for (const Vec3f& n : proto.normals) out.normals.push_back(p.transform.normal(n));
-        const bool mirrored = p.transform.determinant() < 0;
-        for (std::size_t t = 0; t + 2 < proto.indices.size(); t += 3) {
-            const std::uint32_t a = proto.indices[t], b = proto.indices[t + 1],
-                                c = proto.indices[t + 2];
-            if (mirrored)
-                out.indices.insert(out.indices.end(), {base + a, base + c, base + b});
-            else
-                out.indices.insert(out.indices.end(), {base + a, base + b, base + c});
-        }
-        out.triangleColor.insert(out.triangleColor.end(), proto.triangleColor.begin(),
-                                 proto.triangleColor.end());
-    }
+    for (const MeshPlacement& p : placements) appendCopy(p, out);
     return out;
+}
+
+void MeshScene::appendCopy(const MeshPlacement& p, Mesh& out) const {
+    const Mesh& proto = prototypes[p.prototype];
+    const auto base = static_cast<std::uint32_t>(out.positions.size());
+    for (const Vec3f& v : proto.positions) out.positions.push_back(p.transform.point(v));
+    for (const Vec3f& n : proto.normals) out.normals.push_back(p.transform.normal(n));
+    const bool mirrored = p.transform.determinant() < 0;
+    for (std::size_t t = 0; t + 2 < proto.indices.size(); t += 3) {
+        const std::uint32_t a = proto.indices[t], b = proto.indices[t + 1],
+                            c = proto.indices[t + 2];
+        if (mirrored)
+            out.indices.insert(out.indices.end(), {base + a, base + c, base + b});
+        else
+            out.indices.insert(out.indices.end(), {base + a, base + b, base + c});
+    }
+    out.triangleColor.insert(out.triangleColor.end(), proto.triangleColor.begin(),
+                             proto.triangleColor.end());
 }
 
 void MeshScene::print(std::ostream& os) const {
