@@ -45,7 +45,7 @@ struct RenderCommandOptions {
     bool kolamDots = false;        // --dots: the kolam's dots
     bool ground = false;           // --ground: a floor under a ray-traced plant
     bool sizeGiven = false, backgroundGiven = false;
-    bool derivation = false;  // --derivation: draw the derivation steps, not the turtle's picture
+    bool derivation = false;    // --derivation: draw the derivation steps, not the turtle's picture
     bool noInstancing = false;  // --no-instancing: .glb repeated organs as copies
     bool compress = false;      // --compress: .glb buffers with EXT_meshopt_compression
 };

@@ -5,9 +5,9 @@
 
 #include "animate_command.hpp"
 #include "commands.hpp"
-#include "map_commands.hpp"
 #include "graftal/diagnostics.hpp"
 #include "graftal/file_format.hpp"
+#include "map_commands.hpp"
 #include "music_command.hpp"
 #include "studio_command.hpp"
 
