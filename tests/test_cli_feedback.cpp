@@ -61,6 +61,16 @@ TEST(CliFeedback, SettingsTheSceneDoesNotUseAreWarned) {
         << r.err;
     r = runGraftal("render " + tree.string() + " -o " + png + " --size 64x64 --viewpoint 0,0,9");
     EXPECT_EQ(r.err, "") << "the camera of a ray-traced picture";
+    r = runGraftal("render " + tree.string() + " -o " + (t.path() / "t.ply").string() +
+                   " --compress --no-instancing");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("instancing and compression settings apply to .glb files only; "
+                         "ignored: --no-instancing, --compress"),
+              std::string::npos)
+        << r.err;
+    r = runGraftal("render " + tree.string() + " -o " + (t.path() / "t.glb").string() +
+                   " --compress --no-instancing");
+    EXPECT_EQ(r.err, "") << "a GLB uses both";
     r = runGraftal("render " + tree.string() + " -o " + png + " --view front --viewpoint 0,0,9");
     EXPECT_EQ(r.err,
               "graftal: warning: the 3D scene is drawn as 2D line art; its 3D settings are "

@@ -82,6 +82,8 @@ std::string settingAsFlag(const std::string& field) {
                                                              {"fieldOfView", "--fov"},
                                                              {"samplesPerPixel", "--spp"},
                                                              {"tubeSides", "--tube-sides"},
+                                                             {"glbInstancing", "--no-instancing"},
+                                                             {"glbCompression", "--compress"},
                                                              {"surfaceDivisions", "--quality"},
                                                              {"ground", "--ground"},
                                                              {"lineWidth", "--line-width"},

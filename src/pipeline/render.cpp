@@ -184,6 +184,15 @@ std::vector<std::string> lineArtSettingsGiven(const RenderRequest& request) {
     return given;
 }
 
+// The GLB settings a request gives: they apply to .glb files only.
+std::vector<std::string> glbSettingsGiven(const RenderRequest& request) {
+    const GlbOptions defaults;
+    std::vector<std::string> given;
+    if (request.glb.instancing != defaults.instancing) given.push_back("glbInstancing");
+    if (request.glb.compression != defaults.compression) given.push_back("glbCompression");
+    return given;
+}
+
 // Settings the route taken does not use are said, not silently dropped.
 void warnIgnored(RenderResult& result, const RenderRequest& request, const Model& model,
                  std::string message, std::vector<std::string> fields) {
@@ -202,6 +211,7 @@ void warnLineArtIgnores(RenderResult& result, const RenderRequest& request, cons
     if (request.tubeSides != RenderRequest{}.tubeSides) fields.push_back("tubeSides");
     if (request.surfaceDivisions != RenderRequest{}.surfaceDivisions)
         fields.push_back("surfaceDivisions");
+    for (std::string& f : glbSettingsGiven(request)) fields.push_back(std::move(f));
     warnIgnored(result, request, model,
                 scene3D ? "the 3D scene is drawn as 2D line art; its 3D settings are ignored"
                         : "the scene is 2D and drawn as line art; 3D settings are ignored",
@@ -329,6 +339,10 @@ RenderResult render(const Model& model, const RenderRequest& request) {
         warnIgnored(result, request, model,
                     "a 3D file holds no camera or light; these settings are ignored",
                     cameraSettingsGiven(request));
+    if (*format != FileFormat::Glb)
+        warnIgnored(result, request, model,
+                    "instancing and compression settings apply to .glb files only; ignored",
+                    glbSettingsGiven(request));
     // Uncoloured 3D plants are bark brown, not line art's ink, so their shading shows.
     if (model.view.colorMap.empty()) scene.palette = defaultPalette3D();
     if (!model.view.materialFile.empty())
