@@ -2,6 +2,11 @@
 // progress on a terminal.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <map>
+#include <sstream>
+#include <string>
+
 #include "graftal/graftal.hpp"
 #include "process.hpp"
 #include "test_helpers.hpp"
@@ -104,4 +109,48 @@ TEST(CliFeedback, ALongRunShowsItsProgressOnATerminal) {
     auto r = runGraftal("stats " + island);
     EXPECT_EQ(r.status, 0);
     EXPECT_EQ(r.err, "");
+}
+
+namespace {
+
+std::size_t objFaces(const std::filesystem::path& obj) {
+    std::istringstream in(readFile(obj));
+    std::size_t faces = 0;
+    for (std::string line; std::getline(in, line);)
+        if (line.rfind("f ", 0) == 0) ++faces;
+    return faces;
+}
+
+}  // namespace
+
+TEST(CliFeedback, QualitySetsTheMeshResolutionOfRenderAndAnimate) {
+    TempDir t;
+    auto tree = t.write("tree.l", kTree3D);
+    std::map<std::string, std::size_t> faces;
+    for (const std::string q : {"low", "medium", "high"}) {
+        const auto obj = t.path() / (q + ".obj");
+        auto r = runGraftal("render " + tree.string() + " -o " + obj.string() + " --quality " + q);
+        ASSERT_EQ(r.status, 0) << r.err;
+        faces[q] = objFaces(obj);
+    }
+    // Tubes of 5, 8 and 16 sides: more sides, more triangles.
+    EXPECT_LT(faces["low"], faces["medium"]);
+    EXPECT_LT(faces["medium"], faces["high"]);
+    auto r = runGraftal("render " + tree.string() + " -o " + (t.path() / "d.obj").string());
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(objFaces(t.path() / "d.obj"), faces["medium"]) << "medium is the default";
+
+    for (const std::string command : {"render", "animate"}) {
+        const std::string out = (t.path() / (command == "render" ? "x.png" : "x.gif")).string();
+        r = runGraftal(command + " " + tree.string() + " -o " + out + " --quality ultra");
+        EXPECT_EQ(r.status, 1) << command;
+        EXPECT_NE(r.err.find("--quality 'ultra': expected low, medium, high or a number"),
+                  std::string::npos)
+            << r.err;
+        EXPECT_FALSE(std::filesystem::exists(out)) << command;
+    }
+    r = runGraftal("animate " + tree.string() + " -o " + (t.path() / "a.gif").string() +
+                   " --quality low --size 64x64 --spp 1");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_GT(std::filesystem::file_size(t.path() / "a.gif"), 0u);
 }

@@ -53,8 +53,11 @@ AnimateCommand::AnimateCommand(CLI::App& app,
     c.add_option("--light", light_, "3D direction towards the sun, x,y,z");
     c.add_option("--spp", request_.samplesPerPixel, "3D samples per pixel (antialiasing)")
         ->check(CLI::Range(1, 1024));
-    c.add_option("--tube-sides", request_.tubeSides, "3D cylinder cross-section vertices")
+    c.add_option("--tube-sides", tubeSides_, "3D cylinder cross-section vertices")
         ->check(CLI::Range(3, 64));
+    c.add_option("--quality", quality_,
+                 "3D mesh resolution: low, medium (default), high, or N (3-64) for N tube sides "
+                 "and N surface divisions");
     c.add_flag("--ground", request_.ground, "3D: a floor under the plant, with its shadow");
     c.add_option("--spline", request_.spline,
                  "draw turtle paths as B-splines with N points per segment (0: straight)")
@@ -82,6 +85,16 @@ int AnimateCommand::run(const InputOptions& in) {
     if (!target_.empty()) request.target = parseVector("--target", target_);
     if (!up_.empty()) request.up = parseVector("--up", up_);
     if (!light_.empty()) request.light = parseVector("--light", light_);
+    if (!quality_.empty()) {
+        const std::optional<MeshResolution> resolution = meshResolutionFor(quality_);
+        if (!resolution)
+            throw Error(SourceLocation{"graftal", 0, 0},
+                        "--quality '" + quality_ +
+                            "': expected low, medium, high or a number from 3 to 64");
+        request.tubeSides = resolution->tubeSides;
+        request.surfaceDivisions = resolution->surfaceDivisions;
+    }
+    if (tubeSides_) request.tubeSides = *tubeSides_;
     // Option errors and an output that cannot be written, before the file is read.
     checkAnimationRequest(request);
     checkAnimationOutput(request.output, *animationFormatFor(request.output));

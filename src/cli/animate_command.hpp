@@ -23,6 +23,8 @@ class AnimateCommand {
     CLI::App* command_ = nullptr;
     AnimationRequest request_;
     std::string output_, size_, background_, color_, view_;
+    std::string quality_;           // --quality low|medium|high|N
+    std::optional<int> tubeSides_;  // --tube-sides, over what --quality gives
     std::string viewpoint_, target_, up_, light_;
     std::optional<int> to_;
     std::optional<int> frames_;
