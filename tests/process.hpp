@@ -24,14 +24,16 @@ inline std::string readFile(const std::filesystem::path& p) {
     return ss.str();
 }
 
-// `args` is passed through the shell; quote paths with spaces yourself.
-inline RunResult runGraftal(const std::string& args) {
+// `args` is passed through the shell; quote paths with spaces yourself. Standard input is
+// `input` (by default nothing).
+inline RunResult runGraftal(const std::string& args,
+                            const std::filesystem::path& input = "/dev/null") {
     static int counter = 0;
     auto dir = std::filesystem::temp_directory_path();
     auto tag = std::to_string(::getpid()) + "-" + std::to_string(counter++);
     auto outPath = dir / ("graftal-out-" + tag), errPath = dir / ("graftal-err-" + tag);
     std::string cmd = std::string(GRAFTAL_EXE) + " " + args + " > " + outPath.string() + " 2> " +
-                      errPath.string() + " < /dev/null";
+                      errPath.string() + " < " + input.string();
     int raw = std::system(cmd.c_str());
     RunResult r;
     r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);

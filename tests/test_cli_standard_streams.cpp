@@ -15,21 +15,6 @@ const char* kParametric =
     "Lsystem: 1\nderivation length: 2\naxiom: A(1)\nA(x) --> F(x*0.5)[+A(x+1)]B(x,-2.25)\n"
     "endlsystem\n";
 
-// runGraftal gives the command /dev/null as standard input; this gives it `input`.
-graftal::testing::RunResult runWithInput(const std::string& args,
-                                         const std::filesystem::path& input) {
-    TempDir t;
-    const auto out = t.path() / "out", err = t.path() / "err";
-    const std::string cmd = std::string(GRAFTAL_EXE) + " " + args + " < " + input.string() + " > " +
-                            out.string() + " 2> " + err.string();
-    const int raw = std::system(cmd.c_str());
-    graftal::testing::RunResult r;
-    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
-    r.out = readFile(out);
-    r.err = readFile(err);
-    return r;
-}
-
 }  // namespace
 
 TEST(CliStandardStreams, DeriveJsonListsEveryModuleWithItsParameters) {
@@ -72,17 +57,17 @@ TEST(CliStandardStreams, DeriveJsonListsEveryModuleWithItsParameters) {
 TEST(CliStandardStreams, DashReadsStandardInputAndNamesIt) {
     TempDir t;
     auto f = t.write("p.l", kParametric);
-    auto r = runWithInput("derive -", f);
+    auto r = runGraftal("derive -", f);
     EXPECT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(r.out, "F(0.5)[+F(1)[+A(3)]B(2,-2.25)]B(1,-2.25)\n");
-    r = runWithInput("stats -", f);
+    r = runGraftal("stats -", f);
     EXPECT_EQ(nlohmann::json::parse(r.out)["file"], "<stdin>") << r.out;
     auto bad = t.write("bad.l", "Lsystem: 1\naxiom: F\nF --> F[+F\nendlsystem\n");
-    r = runWithInput("derive -", bad);
+    r = runGraftal("derive -", bad);
     EXPECT_EQ(r.status, 1);
     EXPECT_EQ(r.err.rfind("<stdin>:3:", 0), 0u) << r.err;
     auto png = t.path() / "p.png";
-    r = runWithInput("render - -o " + png.string(), f);
+    r = runGraftal("render - -o " + png.string(), f);
     EXPECT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(readFile(png).substr(1, 3), "PNG");
 }
@@ -96,7 +81,7 @@ TEST(CliStandardStreams, DashOutputWritesToStandardOutput) {
     r = runGraftal("render " + f.string() + " -o -");
     EXPECT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(r.out, readFile(file)) << "SVG by default";
-    r = runWithInput("render - -o - --format png", f);
+    r = runGraftal("render - -o - --format png", f);
     EXPECT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(r.out.substr(1, 3), "PNG");
     r = runGraftal("render " + f.string() + " -o - --format obj");

@@ -101,38 +101,20 @@ TEST(MapCli, BadInputNamesFileLineAndColumnAndWritesNothing) {
         << r.err;
 }
 
-namespace {
-
-// graftal ARGS < input: status, standard output and standard error.
-graftal::testing::RunResult runWithInput(const std::string& args, const fs::path& input) {
-    TempDir t;
-    const auto out = t.path() / "out", err = t.path() / "err";
-    const std::string cmd = std::string(GRAFTAL_EXE) + " " + args + " < " + input.string() + " > " +
-                            out.string() + " 2> " + err.string();
-    const int raw = std::system(cmd.c_str());
-    graftal::testing::RunResult r;
-    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
-    r.out = graftal::testing::readFile(out);
-    r.err = graftal::testing::readFile(err);
-    return r;
-}
-
-}  // namespace
-
 TEST(MapCli, DashReadsAMapFromStandardInputAndWritesToStandardOutput) {
     TempDir t;
     const fs::path square = example("fig5.1-square-map.l");
     auto fromFile = runGraftal("derive " + square.string() + " -n 2");
-    auto r = runWithInput("derive - -n 2", square);
+    auto r = runGraftal("derive - -n 2", square);
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(r.out, fromFile.out);
-    r = runWithInput("stats - --map-geometry relaxed", square);
+    r = runGraftal("stats - --map-geometry relaxed", square);
     ASSERT_EQ(r.status, 0) << r.err;
     auto j = nlohmann::json::parse(r.out);
     EXPECT_EQ(j["file"], "<stdin>");
     EXPECT_EQ(j["cells"], 16);
     const fs::path svg = t.path() / "square.svg";
-    r = runWithInput("render - -o " + svg.string(), square);
+    r = runGraftal("render - -o " + svg.string(), square);
     ASSERT_EQ(r.status, 0) << r.err;
     const std::string picture = graftal::testing::readFile(svg);
     EXPECT_NE(picture.find("<svg"), std::string::npos);
@@ -140,11 +122,11 @@ TEST(MapCli, DashReadsAMapFromStandardInputAndWritesToStandardOutput) {
     r = runGraftal("render " + square.string() + " -o -");
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(r.out, picture);
-    r = runWithInput("render - -o - --format png", square);
+    r = runGraftal("render - -o - --format png", square);
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(r.out.substr(1, 3), "PNG");
     auto bad = t.write("bad.l", "map L-system:\naxiom: ab\na --> a[+bb]a\nb --> b\n");
-    r = runWithInput("derive -", bad);
+    r = runGraftal("derive -", bad);
     EXPECT_EQ(r.status, 1);
     EXPECT_EQ(r.err.rfind("<stdin>:3:11: error: a branch is one edge", 0), 0u) << r.err;
 }
