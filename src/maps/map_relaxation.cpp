@@ -152,7 +152,10 @@ int solveInterior(PlaneMap& m, const Rows& rows, Workspace& ws, double tolerance
     auto range = [&](std::size_t k) {
         return std::pair{k * kBlock, std::min(n, (k + 1) * kBlock)};
     };
-    auto& [x, b, r, u, w, p, s, part1, part2, part3] = ws;
+    // Plain references, not a structured binding: lambdas below capture them, which C++20
+    // allows for references but clang (the fuzz build) does not for bindings.
+    std::vector<XY>&x = ws.x, &b = ws.b, &r = ws.r, &u = ws.u, &w = ws.w, &p = ws.p, &s = ws.s;
+    std::vector<double>&part1 = ws.part1, &part2 = ws.part2, &part3 = ws.part3;
     std::fill(p.begin(), p.end(), XY{});
     std::fill(s.begin(), s.end(), XY{});
     // w = A u and the block's (r, u), (w, u) and (r, r).
