@@ -50,8 +50,8 @@ inline void checkRejection(const graftal::Error& e, const char* stage) {
 
 // The model of `text`, or nullopt when the parser rejected it. The parser returns its
 // diagnostics as values: a rejection must carry at least one error, each with a message.
-inline std::optional<graftal::Model> parseModel(std::string_view text,
-                                                std::vector<graftal::Diagnostic>* warnings = nullptr) {
+inline std::optional<graftal::Model> parseModel(
+    std::string_view text, std::vector<graftal::Diagnostic>* warnings = nullptr) {
     graftal::ParseOptions options;
     options.fileName = "fuzz.l";
     graftal::ParseResult result = graftal::parse(text, options);
@@ -230,6 +230,78 @@ inline void parseSurfaceFile(std::string_view text) {
         (void)graftal::buildMesh(scene, mesh, &library);
     } catch (const graftal::Error& e) {
         checkRejection(e, "surface mesh");
+    }
+}
+
+// ---- view and data files ------------------------------------------------------------
+
+// The files a cpfg model names besides its .l: the view file (.v) read with a small fixed
+// L-system and then drawn, and the contour (.con), function (.func, .fset), material (.mat)
+// and colour map (.map) readers. The first byte picks the reader; the rest is its input.
+// The view is named inside an empty scratch folder, so relative file names find nothing.
+inline void readDataFile(const std::uint8_t* data, std::size_t size) {
+    if (size == 0) return;
+    const std::string_view text = asText(data + 1, size - 1);
+    const std::span<const std::uint8_t> bytes(data + 1, size - 1);
+    try {
+        switch (data[0] % 6) {
+            case 0: {
+                static const std::string folder = [] {
+                    auto f = std::filesystem::temp_directory_path() /
+                             ("graftal-fuzz-view-" + std::to_string(::getpid()));
+                    std::filesystem::create_directories(f);
+                    return f.string();
+                }();
+                graftal::ParseOptions options;
+                options.fileName = folder + "/fuzz.l";
+                graftal::ParseResult result = graftal::parse(
+                    "derivation length: 2\naxiom: F(1)A\nA --> [+F(1)~l]&F(1)/A\n"
+                    "endlsystem\n",
+                    text, folder + "/fuzz.v", options);
+                for (const graftal::Diagnostic& d : result.diagnostics)
+                    if (d.message.empty()) finding("view: diagnostic without a message");
+                if (!result.ok()) {
+                    if (result.errors().empty()) finding("view: rejected without an error");
+                    return;
+                }
+                std::ostringstream printed;
+                printed << result.model;
+                graftal::DerivationOptions derive;
+                derive.threads = 1;
+                graftal::Derivation derivation(result.model, derive);
+                derivation.step();
+                derivation.step();
+                graftal::Scene scene = graftal::interpret(result.model, derivation.current());
+                RunLimits limits;
+                limits.imageSize = 200;
+                drawScene(scene, limits);
+                return;
+            }
+            case 1: {
+                graftal::Contour contour = graftal::parseContourFile(text, "fuzz.con", 1);
+                for (int sides : {3, 8}) (void)graftal::contourPoints(contour, sides);
+                return;
+            }
+            case 2: {
+                graftal::GraphicalFunction f = graftal::parseFunctionFile(text, "fuzz.func", 20);
+                for (double x : {-1.0, 0.0, 0.25, 1.0, 2.0}) (void)f.value(x);
+                return;
+            }
+            case 3: {
+                for (const graftal::GraphicalFunction& f :
+                     graftal::parseFunctionSet(text, "fuzz.fset"))
+                    (void)f.value(0.5);
+                return;
+            }
+            case 4:
+                (void)graftal::materialPalette(graftal::parseMaterials(bytes, "fuzz.mat"));
+                return;
+            default:
+                (void)graftal::parseColorMap(bytes, "fuzz.map");
+                return;
+        }
+    } catch (const graftal::Error& e) {
+        checkRejection(e, "data file");
     }
 }
 

@@ -21,15 +21,17 @@ nice_level=${FUZZ_NICE:-19}
 jobs=${FUZZ_JOBS:-1}
 
 # Inputs and limits per target: the .l texts of the examples are under 4 KB, surface files
-# under 8 KB. The derive target bounds its own derivation time (fuzz_api.hpp); -timeout is
-# the limit for one input, past which libFuzzer records a timeout finding.
+# under 8 KB, view and data files (fuzz_data_files.cpp) under 4 KB. The derive target
+# bounds its own derivation time (fuzz_api.hpp); -timeout is the limit for one input, past
+# which libFuzzer records a timeout finding.
 options_for() {
     case $1 in
         parse) echo "-max_len=4096 -timeout=10 -rss_limit_mb=1024 -dict=$here/dict/lsystem.dict" ;;
         derive) echo "-max_len=4096 -timeout=20 -rss_limit_mb=1536 -dict=$here/dict/lsystem.dict" ;;
         surface) echo "-max_len=8192 -timeout=10 -rss_limit_mb=1024 -dict=$here/dict/surface.dict" ;;
         expression) echo "-max_len=1024 -timeout=10 -rss_limit_mb=1024 -dict=$here/dict/lsystem.dict" ;;
-        *) echo "unknown fuzz target '$1' (parse, derive, surface, expression)" >&2; exit 2 ;;
+        data_files) echo "-max_len=4096 -timeout=10 -rss_limit_mb=1024 -dict=$here/dict/view.dict" ;;
+        *) echo "unknown fuzz target '$1' (parse, derive, surface, expression, data_files)" >&2; exit 2 ;;
     esac
 }
 

@@ -40,6 +40,11 @@ struct ParseResult {
 // Parses .l text (cpfg L-system files and pfg data files). Never throws for bad input.
 ParseResult parse(std::string_view text, const ParseOptions& options);
 
+// Parses .l text, then the text of the cpfg view file read with it (its settings win, as in
+// loadModel). `viewFileName` names the view file in diagnostics and finds the files it names.
+ParseResult parse(std::string_view text, std::string_view viewText, const std::string& viewFileName,
+                  const ParseOptions& options);
+
 // Reads and parses a file (ParseOptions::fileName defaults to the path), then the view file
 // ParseOptions::viewFile names, if any. `path` may be a model folder as vlab lays them out:
 // its one .l file is read, with its one .v file unless a view file is named. A file that

@@ -4,9 +4,11 @@
 
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "graftal/diagnostics.hpp"
+#include "graftal/file_reading.hpp"
 
 namespace graftal::cli {
 
@@ -25,9 +27,17 @@ ScratchFile::~ScratchFile() {
 
 const std::string& standardInputText() {
     static const std::string text = [] {
-        std::ostringstream all;
-        all << std::cin.rdbuf();
-        return std::move(all).str();
+        if (::isatty(STDIN_FILENO)) {  // typed in: ends with the user's Ctrl-D
+            std::ostringstream all;
+            all << std::cin.rdbuf();
+            return std::move(all).str();
+        }
+        // A file, a pipe or a device redirected in: read with the library's limits, so
+        // that `< /dev/zero` is an error and not an endless read.
+        std::string problem;
+        std::optional<std::string> bytes = readUserFile("/dev/stdin", problem);
+        if (!bytes) throw Error(SourceLocation{kStdinName, 0, 0}, "standard input " + problem);
+        return std::move(*bytes);
     }();
     return text;
 }

@@ -12,6 +12,7 @@
 
 #include "graftal/atomic_file.hpp"
 #include "graftal/diagnostics.hpp"
+#include "graftal/file_reading.hpp"
 
 namespace graftal {
 
@@ -51,21 +52,17 @@ std::vector<Rgb> parseColorMap(std::span<const std::uint8_t> bytes, const std::s
 }
 
 std::vector<Rgb> loadColorMap(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in)
-        throw mapError(path.string(),
-                       std::string("cannot open colour map: ") + std::strerror(errno));
-    // Read one byte past the expected size so that an oversized file is caught without
-    // reading all of whatever it is.
-    std::vector<std::uint8_t> bytes(kColorMapBytes + 1);
-    in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-    if (in.bad()) throw mapError(path.string(), "cannot read colour map");
-    bytes.resize(static_cast<std::size_t>(in.gcount()));
-    if (bytes.size() > kColorMapBytes)
+    std::string problem;
+    // At most the expected size: a larger file is refused unread.
+    const std::optional<std::string> text = readUserFile(path, problem, kColorMapBytes);
+    if (!text && problem.rfind("is larger than", 0) != 0)
+        throw mapError(path.string(), "the colour map " + problem);
+    if (!text)
         throw mapError(path.string(),
                        "not a colour map: it has more than " + std::to_string(kColorMapBytes) +
                            " bytes, expected exactly " + std::to_string(kColorMapBytes) +
                            " (256 colours of 3 bytes: red, green, blue)");
+    const std::vector<std::uint8_t> bytes(text->begin(), text->end());
     return parseColorMap(bytes, path.string());
 }
 

@@ -9,6 +9,7 @@
 #include <iterator>
 
 #include "graftal/diagnostics.hpp"
+#include "graftal/file_reading.hpp"
 
 namespace graftal {
 
@@ -43,15 +44,12 @@ std::vector<Material> parseMaterials(std::span<const std::uint8_t> bytes,
 }
 
 std::vector<Material> loadMaterials(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in)
-        throw Error(SourceLocation{path.string(), 0, 0},
-                    std::string("cannot open material file: ") + std::strerror(errno));
-    std::vector<std::uint8_t> bytes;
-    char c;
     // At most one byte past the largest file, so that a huge wrong file is not read whole.
-    while (bytes.size() <= kMaterialBytes * kMaterialEntries && in.get(c))
-        bytes.push_back(static_cast<std::uint8_t>(c));
+    std::string problem;
+    const std::optional<std::string> text =
+        readUserFile(path, problem, kMaterialBytes * kMaterialEntries + 1);
+    if (!text) throw Error(SourceLocation{path.string(), 0, 0}, "the material file " + problem);
+    const std::vector<std::uint8_t> bytes(text->begin(), text->end());
     return parseMaterials(bytes, path.string());
 }
 

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <system_error>
 
+#include "graftal/file_reading.hpp"
 #include "graftal/surface.hpp"
 
 #include <dlfcn.h>
@@ -380,13 +381,10 @@ Surface parseSurface(std::string_view text, const std::string& fileName) {
 }
 
 Surface loadSurface(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in)
-        throw Error(SourceLocation{path.string(), 0, 0},
-                    std::string("cannot open surface file: ") + std::strerror(errno));
-    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (in.bad()) throw Error(SourceLocation{path.string(), 0, 0}, "cannot read surface file");
-    return parseSurface(text, path.string());
+    std::string problem;
+    const std::optional<std::string> text = readUserFile(path, problem);
+    if (!text) throw Error(SourceLocation{path.string(), 0, 0}, "the surface file " + problem);
+    return parseSurface(*text, path.string());
 }
 
 std::filesystem::path builtinSurfacesDirectory() {

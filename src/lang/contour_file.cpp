@@ -7,6 +7,7 @@
 
 #include "contour_setting.hpp"
 #include "graftal/contour.hpp"
+#include "graftal/file_reading.hpp"
 
 namespace graftal {
 
@@ -241,15 +242,14 @@ void loadContourSetting(ViewSettings& view, const ViewSetting& setting,
     std::filesystem::path path(file);
     if (path.is_relative())
         path = std::filesystem::path(setting.location.file).parent_path() / path;
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-        diagnostics.error(setting.location, "cannot open the contour file '" + path.string() + "'");
+    std::string problem;
+    const std::optional<std::string> bytes = readUserFile(path, problem);
+    if (!bytes) {
+        diagnostics.error(setting.location, "the contour file '" + path.string() + "' " + problem);
         return;
     }
-    std::ostringstream bytes;
-    bytes << in.rdbuf();
     try {
-        Contour contour = parseContourFile(bytes.str(), path.string(), static_cast<int>(id));
+        Contour contour = parseContourFile(*bytes, path.string(), static_cast<int>(id));
         // A later line with the same id replaces the earlier one.
         for (Contour& c : view.contours)
             if (c.id == contour.id) {

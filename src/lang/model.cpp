@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "graftal/file_reading.hpp"
 #include "graftal/parser_target.hpp"
 #include "graftal/view_file.hpp"
 #include "parser.hpp"
@@ -106,14 +107,10 @@ ParseResult parse(std::string_view text, const ParseOptions& options) {
 
 namespace {
 
-bool readWholeFile(const std::filesystem::path& path, std::string& text) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) return false;
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return false;
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    text = ss.str();
+bool readWholeFile(const std::filesystem::path& path, std::string& text, std::string& problem) {
+    std::optional<std::string> bytes = readUserFile(path, problem);
+    if (!bytes) return false;
+    text = std::move(*bytes);
     return true;
 }
 
@@ -146,7 +143,12 @@ void addFolderFiles(const std::filesystem::path& folder, ParseResult& result) {
     auto sets = filesEndingWith(folder, ".fset");
     if (sets.size() != 1 || !model.lsystem.functions.empty()) return;
     std::string text;
-    if (!readWholeFile(sets[0], text)) return;
+    std::string problem;
+    if (!readWholeFile(sets[0], text, problem)) {
+        result.diagnostics.push_back({Severity::Error, SourceLocation{sets[0].string(), 0, 0},
+                                      "the function set " + problem});
+        return;
+    }
     try {
         model.lsystem.functions = parseFunctionSet(text, sets[0].string());
     } catch (const Error& e) {
@@ -183,29 +185,41 @@ ParseResult loadModel(const std::filesystem::path& given, ParseOptions options) 
     }
     if (options.fileName.empty()) options.fileName = path.string();
     std::string text;
-    if (!readWholeFile(path, text))
-        return failure(std::filesystem::is_directory(path, ec)
-                           ? "is a directory, expected an L-system file"
-                           : "cannot open the file (does it exist?)");
-    ParseResult result = parse(text, options);
+    std::string problem;
+    if (!readWholeFile(path, text, problem))
+        return failure(
+            std::filesystem::is_directory(path, ec) ? "is a directory, expected an L-system file"
+            : std::filesystem::exists(path, ec)     ? problem
+                                                    : "cannot open the file (does it exist?)");
     const bool folder = std::filesystem::is_directory(given, ec);
     if (options.viewFile.empty()) {
+        ParseResult result = parse(text, options);
         if (folder) addFolderFiles(given, result);
         return result;
     }
     std::string viewText;
-    if (!readWholeFile(options.viewFile, viewText)) {
+    if (!readWholeFile(options.viewFile, viewText, problem)) {
+        ParseResult result = parse(text, options);
         result.diagnostics.push_back({Severity::Error, SourceLocation{options.viewFile, 0, 0},
-                                      "cannot open the view file (does it exist?)"});
+                                      std::filesystem::exists(options.viewFile, ec)
+                                          ? "the view file " + problem
+                                          : "cannot open the view file (does it exist?)"});
         return result;
     }
+    ParseResult result = parse(text, viewText, options.viewFile, options);
+    if (folder) addFolderFiles(given, result);
+    return result;
+}
+
+ParseResult parse(std::string_view text, std::string_view viewText, const std::string& viewFileName,
+                  const ParseOptions& options) {
+    ParseResult result = parse(text, options);
     DiagnosticList diags;
     ModelBuilder builder(diags);
     builder.model() = std::move(result.model);
-    parseViewFileInto(viewText, options.viewFile, builder, diags);
+    parseViewFileInto(viewText, viewFileName, builder, diags);
     result.model = std::move(builder.model());
     for (const auto& d : diags.items()) result.diagnostics.push_back(d);
-    if (folder) addFolderFiles(given, result);
     return result;
 }
 

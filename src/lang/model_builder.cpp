@@ -9,6 +9,7 @@
 #include <variant>
 
 #include "contour_setting.hpp"
+#include "graftal/file_reading.hpp"
 #include "graftal/parser_target.hpp"
 
 namespace graftal {
@@ -170,19 +171,17 @@ void ModelBuilder::loadFunctions(const ViewSetting& setting) {
     std::filesystem::path path(name);
     if (path.is_relative())
         path = std::filesystem::path(setting.location.file).parent_path() / path;
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-        diags_.error(setting.location, "cannot open the function file '" + path.string() + "'");
+    std::string problem;
+    const std::optional<std::string> bytes = readUserFile(path, problem);
+    if (!bytes) {
+        diags_.error(setting.location, "the function file '" + path.string() + "' " + problem);
         return;
     }
-    std::ostringstream bytes;
-    bytes << in.rdbuf();
     try {
         if (setting.name == "function set")
-            model_.lsystem.functions = parseFunctionSet(bytes.str(), path.string());
+            model_.lsystem.functions = parseFunctionSet(*bytes, path.string());
         else
-            model_.lsystem.functions.push_back(
-                parseFunctionFile(bytes.str(), path.string(), samples));
+            model_.lsystem.functions.push_back(parseFunctionFile(*bytes, path.string(), samples));
     } catch (const Error& e) {
         for (const auto& d : e.diagnostics()) diags_.add(d);
     }

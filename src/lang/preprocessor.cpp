@@ -41,6 +41,8 @@ extern "C" {
 #include <sstream>
 #include <vector>
 
+#include "graftal/file_reading.hpp"
+
 namespace graftal {
 
 namespace fs = std::filesystem;
@@ -160,15 +162,23 @@ class Workspace {
                 if (close != std::string::npos) {
                     std::string name = unshield(text2.substr(operand + 1, close - operand - 1));
                     fs::path target = fs::path(name).is_absolute() ? fs::path(name) : folder / name;
-                    std::ifstream in(target, std::ios::binary);
-                    if (in && !fs::is_directory(target, ec)) {
-                        std::ostringstream ss;
-                        ss << in.rdbuf();
+                    std::string problem;
+                    std::optional<std::string> includedText;
+                    if (fs::exists(target, ec) && !fs::is_directory(target, ec)) {
+                        includedText = readUserFile(target, problem);
+                        if (!includedText) {
+                            // A device or an oversized file: mcpp would read it without end.
+                            diags_.error({display, line.number, static_cast<int>(operand) + 1},
+                                         "the included file '" + name + "' " + problem);
+                            return {};
+                        }
+                    }
+                    if (includedText) {
                         std::string shown =
                             fs::path(name).is_absolute()
                                 ? name
                                 : (displayFolder / name).lexically_normal().string();
-                        fs::path included = add(ss.str(), target, shown, false);
+                        fs::path included = add(*includedText, target, shown, false);
                         if (included.empty()) return {};
                         text2 = text2.substr(0, operand) + "\"" + included.string() + "\"" +
                                 text2.substr(close + 1);

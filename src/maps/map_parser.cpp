@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "graftal/expression.hpp"
+#include "graftal/file_reading.hpp"
 #include "graftal/map_lsystem.hpp"
 #include "lang/source_text.hpp"
 
@@ -367,11 +368,9 @@ bool isMapLSystemText(std::string_view text) {
 bool isMapLSystemFile(const std::filesystem::path& path) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec)) return false;
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return false;
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return isMapLSystemText(ss.str());
+    std::string problem;
+    const std::optional<std::string> text = readUserFile(path, problem);
+    return text && isMapLSystemText(*text);
 }
 
 MapParseResult parseMapLSystem(std::string_view text, const ParseOptions& options) {
@@ -389,17 +388,16 @@ MapParseResult parseMapLSystem(std::string_view text, const ParseOptions& option
 
 MapParseResult loadMapLSystem(const std::filesystem::path& path, ParseOptions options) {
     if (options.fileName.empty()) options.fileName = path.string();
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
+    std::string problem;
+    const std::optional<std::string> text = readUserFile(path, problem);
+    if (!text) {
         MapParseResult r;
         DiagnosticList diags;
-        diags.error(SourceLocation{options.fileName, 0, 0}, "cannot read the file");
+        diags.error(SourceLocation{options.fileName, 0, 0}, problem);
         r.diagnostics = diags.items();
         return r;
     }
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return parseMapLSystem(ss.str(), options);
+    return parseMapLSystem(*text, options);
 }
 
 std::string successorText(const MapProduction& p) {
