@@ -21,6 +21,7 @@
 #include <cmath>
 
 #include "core/parallel.hpp"
+#include "core/thread_pool.hpp"
 #include "map_outline.hpp"
 
 namespace graftal {
@@ -36,14 +37,6 @@ constexpr std::uint32_t kFixed = 0xFFFFFFFFu;
 struct XY {
     double x = 0, y = 0;
 };
-
-// fn(block) for every block, the blocks shared among `threads` threads.
-template <class Fn>
-void forEachBlock(std::size_t blocks, unsigned threads, Fn&& fn) {
-    forEachChunk(blocks, std::max(1u, threads), [&](std::size_t, std::size_t b, std::size_t e) {
-        for (std::size_t k = b; k < e; ++k) fn(k);
-    });
-}
 
 double sumInOrder(const std::vector<double>& parts) {
     double s = 0;
@@ -143,21 +136,53 @@ struct Workspace {
 // Solves the interior for the outline where it is now, starting from the interior's
 // present positions, until the root-mean-square force left on a vertex is below
 // `tolerance` times the mean wall length. Returns the iterations done.
+//
+// The whole solve is one run of the pool: each thread owns a contiguous run of blocks and
+// the team meets at a barrier after each pass that another thread's rows read (two per
+// iteration). After the reduction's barrier every thread adds the blocks' sums in block
+// order itself, so all take the same decisions with the same numbers.
 int solveInterior(PlaneMap& m, const Rows& rows, Workspace& ws, double tolerance, int maxIterations,
-                  unsigned threads) {
+                  ThreadPool& pool) {
     const std::size_t n = rows.size();
     if (n == 0) return 0;
     const std::size_t blocks = (n + kBlock - 1) / kBlock;
-    const unsigned workers = n < kParallelFrom ? 1u : threads;
-    auto range = [&](std::size_t k) {
-        return std::pair{k * kBlock, std::min(n, (k + 1) * kBlock)};
-    };
+    const double wall = meanWallLength(m);
+    const double stop = tolerance * tolerance * wall * wall * static_cast<double>(n);
     // Plain references, not a structured binding: lambdas below capture them, which C++20
     // allows for references but clang (the fuzz build) does not for bindings.
     std::vector<XY>&x = ws.x, &b = ws.b, &r = ws.r, &u = ws.u, &w = ws.w, &p = ws.p, &s = ws.s;
     std::vector<double>&part1 = ws.part1, &part2 = ws.part2, &part3 = ws.part3;
-    std::fill(p.begin(), p.end(), XY{});
-    std::fill(s.begin(), s.end(), XY{});
+    auto range = [&](std::size_t k) {
+        return std::pair{k * kBlock, std::min(n, (k + 1) * kBlock)};
+    };
+    // x, b (the outline's pull), p = s = 0.
+    auto load = [&](std::size_t k) {
+        auto [lo, hi] = range(k);
+        for (std::size_t i = lo; i < hi; ++i) {
+            const Vec3& q = m.position[rows.vertexOf[i]];
+            x[i] = {q.x, q.y};
+            XY pull{0, 0};
+            for (std::uint32_t c = rows.fixedStart[i]; c < rows.fixedStart[i + 1]; ++c) {
+                pull.x += m.position[rows.fixedCol[c]].x;
+                pull.y += m.position[rows.fixedCol[c]].y;
+            }
+            b[i] = pull;
+            p[i] = s[i] = XY{};
+        }
+    };
+    // r = b - A x, u = r / degree.
+    auto residual = [&](std::size_t k) {
+        auto [lo, hi] = range(k);
+        for (std::size_t i = lo; i < hi; ++i) {
+            XY acc{b[i].x - rows.degree[i] * x[i].x, b[i].y - rows.degree[i] * x[i].y};
+            for (std::uint32_t c = rows.start[i]; c < rows.start[i + 1]; ++c) {
+                acc.x += x[rows.col[c]].x;
+                acc.y += x[rows.col[c]].y;
+            }
+            r[i] = acc;
+            u[i] = {acc.x / rows.degree[i], acc.y / rows.degree[i]};
+        }
+    };
     // w = A u and the block's (r, u), (w, u) and (r, r).
     auto multiply = [&](std::size_t k) {
         auto [lo, hi] = range(k);
@@ -177,67 +202,57 @@ int solveInterior(PlaneMap& m, const Rows& rows, Workspace& ws, double tolerance
         part2[k] = wu;
         part3[k] = rr;
     };
-    // x, b (the outline's pull), r = b - A x, u = r / degree.
-    forEachBlock(blocks, workers, [&](std::size_t k) {
+    // The step along p and the next direction.
+    auto update = [&](std::size_t k, double alpha, double beta) {
         auto [lo, hi] = range(k);
         for (std::size_t i = lo; i < hi; ++i) {
-            const Vec3& q = m.position[rows.vertexOf[i]];
-            x[i] = {q.x, q.y};
-            XY pull{0, 0};
-            for (std::uint32_t c = rows.fixedStart[i]; c < rows.fixedStart[i + 1]; ++c) {
-                pull.x += m.position[rows.fixedCol[c]].x;
-                pull.y += m.position[rows.fixedCol[c]].y;
-            }
-            b[i] = pull;
+            p[i] = {u[i].x + beta * p[i].x, u[i].y + beta * p[i].y};
+            s[i] = {w[i].x + beta * s[i].x, w[i].y + beta * s[i].y};
+            x[i].x += alpha * p[i].x;
+            x[i].y += alpha * p[i].y;
+            r[i].x -= alpha * s[i].x;
+            r[i].y -= alpha * s[i].y;
+            u[i] = {r[i].x / rows.degree[i], r[i].y / rows.degree[i]};
         }
-    });
-    forEachBlock(blocks, workers, [&](std::size_t k) {
-        auto [lo, hi] = range(k);
-        for (std::size_t i = lo; i < hi; ++i) {
-            XY acc{b[i].x - rows.degree[i] * x[i].x, b[i].y - rows.degree[i] * x[i].y};
-            for (std::uint32_t c = rows.start[i]; c < rows.start[i + 1]; ++c) {
-                acc.x += x[rows.col[c]].x;
-                acc.y += x[rows.col[c]].y;
-            }
-            r[i] = acc;
-            u[i] = {acc.x / rows.degree[i], acc.y / rows.degree[i]};
+    };
+    int done = 0;
+    pool.run([&](unsigned thread) {
+        const auto [first, last] = pool.share(thread, blocks);
+        for (std::size_t k = first; k < last; ++k) load(k);
+        pool.barrier();
+        for (std::size_t k = first; k < last; ++k) residual(k);
+        pool.barrier();
+        for (std::size_t k = first; k < last; ++k) multiply(k);
+        pool.barrier();
+        double gamma = sumInOrder(part1), delta = sumInOrder(part2), rr = sumInOrder(part3);
+        double alpha = delta > 0 ? gamma / delta : 0, beta = 0;
+        int iterations = 0;
+        while (iterations < maxIterations && rr > stop && delta > 0) {
+            ++iterations;
+            for (std::size_t k = first; k < last; ++k) update(k, alpha, beta);
+            pool.barrier();
+            for (std::size_t k = first; k < last; ++k) multiply(k);
+            pool.barrier();
+            const double next = sumInOrder(part1);
+            delta = sumInOrder(part2);
+            rr = sumInOrder(part3);
+            beta = next / gamma;
+            const double denominator = delta - beta * next / alpha;
+            if (!(denominator > 0)) break;
+            alpha = next / denominator;
+            gamma = next;
         }
-    });
-    forEachBlock(blocks, workers, multiply);
-    double gamma = sumInOrder(part1), delta = sumInOrder(part2), rr = sumInOrder(part3);
-    const double wall = meanWallLength(m);
-    const double stop = tolerance * tolerance * wall * wall * static_cast<double>(n);
-    double alpha = delta > 0 ? gamma / delta : 0, beta = 0;
-    int iterations = 0;
-    while (iterations < maxIterations && rr > stop && delta > 0) {
-        ++iterations;
-        forEachBlock(blocks, workers, [&](std::size_t k) {
+        // Every thread writes back its own rows; no other thread reads them any more.
+        for (std::size_t k = first; k < last; ++k) {
             auto [lo, hi] = range(k);
             for (std::size_t i = lo; i < hi; ++i) {
-                p[i] = {u[i].x + beta * p[i].x, u[i].y + beta * p[i].y};
-                s[i] = {w[i].x + beta * s[i].x, w[i].y + beta * s[i].y};
-                x[i].x += alpha * p[i].x;
-                x[i].y += alpha * p[i].y;
-                r[i].x -= alpha * s[i].x;
-                r[i].y -= alpha * s[i].y;
-                u[i] = {r[i].x / rows.degree[i], r[i].y / rows.degree[i]};
+                m.position[rows.vertexOf[i]].x = x[i].x;
+                m.position[rows.vertexOf[i]].y = x[i].y;
             }
-        });
-        forEachBlock(blocks, workers, multiply);
-        const double next = sumInOrder(part1);
-        delta = sumInOrder(part2);
-        rr = sumInOrder(part3);
-        beta = next / gamma;
-        const double denominator = delta - beta * next / alpha;
-        if (!(denominator > 0)) break;
-        alpha = next / denominator;
-        gamma = next;
-    }
-    for (std::size_t i = 0; i < n; ++i) {
-        m.position[rows.vertexOf[i]].x = x[i].x;
-        m.position[rows.vertexOf[i]].y = x[i].y;
-    }
-    return iterations;
+        }
+        if (thread == 0) done = iterations;
+    });
+    return done;
 }
 
 }  // namespace
@@ -246,21 +261,23 @@ int relaxMap(PlaneMap& map, const MapDerivationOptions& options) {
     const unsigned threads = options.threads == 0 ? defaultThreadCount() : options.threads;
     const Rows rows = buildRows(map);
     Workspace ws(rows.size(), (rows.size() + kBlock - 1) / kBlock);
+    // One team for all the solves of this relaxation; small maps are solved by the caller
+    // alone.
+    ThreadPool pool(rows.size() < kParallelFrom ? 1u : threads);
     if (options.outline == MapOutline::Polygon) {
         placeOutlineOnPolygon(map);
-        return solveInterior(map, rows, ws, options.relaxTolerance, options.relaxIterations,
-                             threads);
+        return solveInterior(map, rows, ws, options.relaxTolerance, options.relaxIterations, pool);
     }
     // The growing outline: rounds of (interior settled roughly, outline moved), then the
     // interior settled for the outline where it ends.
     int iterations = 0;
     for (int round = 0; round < options.outlineRounds; ++round) {
         iterations += solveInterior(map, rows, ws, std::max(options.relaxTolerance, 3e-2),
-                                    options.relaxIterations, threads);
+                                    options.relaxIterations, pool);
         moveGrowingOutline(map);
     }
     return iterations +
-           solveInterior(map, rows, ws, options.relaxTolerance, options.relaxIterations, threads);
+           solveInterior(map, rows, ws, options.relaxTolerance, options.relaxIterations, pool);
 }
 
 }  // namespace graftal
