@@ -419,18 +419,27 @@ TEST(MapGeometry, TheGrowingOutlineEvensOutTheCellsAlongIt) {
 }
 
 TEST(MapGeometry, RelaxationIsTheSameForAnyThreadCount) {
+    // 40 threads are more than the map has blocks of rows to share (about 33,000 vertices
+    // in blocks of 1024): some threads get none, and every thread boundary falls between
+    // blocks that read each other's rows.
     MapLSystem s = example("fig5.2-cell-layer.l");
     for (MapOutline outline : {MapOutline::Growing, MapOutline::Polygon}) {
         MapDerivationOptions o;
         o.geometry = MapGeometry::Relaxed;
         o.outline = outline;
         std::vector<PlaneMap> maps;
-        for (unsigned t : {1u, 2u, 7u}) {
+        std::vector<std::vector<int>> iterations;
+        for (unsigned t : {1u, 2u, 7u, 40u}) {
             o.threads = t;
-            maps.push_back(deriveMap(s, 14, o));
+            iterations.emplace_back();
+            maps.push_back(deriveMap(s, 14, o, [&](const PlaneMap&, const MapStepReport& r) {
+                iterations.back().push_back(r.relaxIterations);
+            }));
         }
         ASSERT_GT(maps[0].vertexCount(), 32768u) << "large enough to be split among threads";
+        EXPECT_GT(iterations[0].back(), 100) << "the last step settled by many iterations";
         for (std::size_t k = 1; k < maps.size(); ++k) {
+            EXPECT_EQ(iterations[k], iterations[0]);
             ASSERT_EQ(maps[k].vertexCount(), maps[0].vertexCount());
             for (std::size_t v = 0; v < maps[0].vertexCount(); ++v) {
                 ASSERT_EQ(maps[k].position[v].x, maps[0].position[v].x);

@@ -12,15 +12,18 @@
 // the neighbours of a vertex are then a few hundred entries away in every array instead of
 // anywhere, and the rows' neighbour lists are compressed arrays of unknown numbers, the
 // outline's pull gathered once per solve. The iteration is the Chronopoulos-Gear form of
-// conjugate gradients: two passes over the vertices per iteration and one reduction point,
-// where the textbook form needs three passes, each a wait for the slowest thread.
+// conjugate gradients, whose update and product fuse into one sweep over the vertices with
+// one reduction point, where the textbook form needs three passes, each a wait for the
+// slowest thread.
 //
 // Every sum is formed per block of a fixed number of vertices and the blocks' sums are
 // added in block order, so the result is the same bit for bit for any number of threads.
 #include <algorithm>
 #include <cmath>
 
+#include "core/huge_pages.hpp"
 #include "core/parallel.hpp"
+#include "core/thread_pool.hpp"
 #include "map_outline.hpp"
 
 namespace graftal {
@@ -28,8 +31,8 @@ namespace graftal {
 namespace {
 
 constexpr std::size_t kBlock = 1024;
-// Below this many unknowns a second thread costs more (starting it, waiting for it at
-// every pass) than it saves.
+// Below this many unknowns a second thread costs more (waiting for it twice an iteration)
+// than it saves.
 constexpr std::size_t kParallelFrom = 16 * kBlock;
 constexpr std::uint32_t kFixed = 0xFFFFFFFFu;
 
@@ -37,17 +40,18 @@ struct XY {
     double x = 0, y = 0;
 };
 
-// fn(block) for every block, the blocks shared among `threads` threads.
-template <class Fn>
-void forEachBlock(std::size_t blocks, unsigned threads, Fn&& fn) {
-    forEachChunk(blocks, std::max(1u, threads), [&](std::size_t, std::size_t b, std::size_t e) {
-        for (std::size_t k = b; k < e; ++k) fn(k);
-    });
-}
+// A block's (r, u), (w, u) and (r, r).
+struct Sums {
+    double ru = 0, wu = 0, rr = 0;
+};
 
-double sumInOrder(const std::vector<double>& parts) {
-    double s = 0;
-    for (double v : parts) s += v;
+Sums sumInOrder(const std::vector<Sums>& parts) {
+    Sums s;
+    for (const Sums& v : parts) {
+        s.ru += v.ru;
+        s.wu += v.wu;
+        s.rr += v.rr;
+    }
     return s;
 }
 
@@ -59,6 +63,9 @@ struct Rows {
     std::vector<std::uint32_t> start, col;            // interior neighbours
     std::vector<std::uint32_t> fixedStart, fixedCol;  // outline neighbours
     std::vector<double> degree;
+    // Per block of kBlock rows, the first and last block its rows' interior neighbours lie
+    // in (the block itself included).
+    std::vector<std::uint32_t> reachFrom, reachTo;
     std::size_t size() const { return vertexOf.size(); }
 };
 
@@ -104,6 +111,8 @@ Rows buildRows(const PlaneMap& m) {
         }
     }
     const std::size_t n = rows.size();
+    rows.col.reserve(adj.size());
+    rows.fixedCol.reserve(adj.size());
     rows.start.assign(n + 1, 0);
     rows.fixedStart.assign(n + 1, 0);
     rows.degree.resize(n);
@@ -119,6 +128,19 @@ Rows buildRows(const PlaneMap& m) {
         rows.start[i + 1] = static_cast<std::uint32_t>(rows.col.size());
         rows.fixedStart[i + 1] = static_cast<std::uint32_t>(rows.fixedCol.size());
     }
+    const std::size_t blocks = (n + kBlock - 1) / kBlock;
+    rows.reachFrom.resize(blocks);
+    rows.reachTo.resize(blocks);
+    for (std::size_t k = 0; k < blocks; ++k) {
+        std::uint32_t lo = static_cast<std::uint32_t>(k), hi = lo;
+        for (std::uint32_t c = rows.start[k * kBlock];
+             c < rows.start[std::min(n, (k + 1) * kBlock)]; ++c) {
+            lo = std::min(lo, static_cast<std::uint32_t>(rows.col[c] / kBlock));
+            hi = std::max(hi, static_cast<std::uint32_t>(rows.col[c] / kBlock));
+        }
+        rows.reachFrom[k] = lo;
+        rows.reachTo[k] = hi;
+    }
     return rows;
 }
 
@@ -132,34 +154,75 @@ double meanWallLength(const PlaneMap& m) {
 }
 
 // The solver's vectors, kept for every solve of one relaxation: fresh memory costs this
-// machine's kernel more than the arithmetic does.
+// machine's kernel more than the arithmetic does. One buffer, so that it is large enough
+// for huge pages (a page fault per 2 MiB instead of per 4 KiB).
 struct Workspace {
-    std::vector<XY> x, b, r, u, w, p, s;
-    std::vector<double> part1, part2, part3;
+    std::vector<XY> storage;
+    XY *x, *b, *r, *u, *w, *p, *s;
+    // Each block's three sums, for iterations of even and of odd number: a thread may write
+    // the next iteration's sums while another still adds up this one's.
+    std::vector<Sums> sums[2];
     Workspace(std::size_t n, std::size_t blocks)
-        : x(n), b(n), r(n), u(n), w(n), p(n), s(n), part1(blocks), part2(blocks), part3(blocks) {}
+        : sums{std::vector<Sums>(blocks), std::vector<Sums>(blocks)} {
+        storage.reserve(7 * n);
+        adviseHugePages(storage);
+        storage.resize(7 * n);
+        XY** vectors[] = {&x, &b, &r, &u, &w, &p, &s};
+        for (std::size_t k = 0; k < 7; ++k) *vectors[k] = storage.data() + k * n;
+    }
 };
 
 // Solves the interior for the outline where it is now, starting from the interior's
 // present positions, until the root-mean-square force left on a vertex is below
 // `tolerance` times the mean wall length. Returns the iterations done.
+//
+// The whole solve is one run of the pool: each thread owns a contiguous run of blocks, and
+// an iteration is one sweep over them (each block updated, then multiplied as soon as the
+// blocks its rows read are updated) and two barriers: one before the blocks that read
+// another thread's rows are multiplied, one before the reduction. After that every thread
+// adds the blocks' sums in block order itself, so all take the same decisions with the same
+// numbers, and the blocks do not depend on the number of threads.
 int solveInterior(PlaneMap& m, const Rows& rows, Workspace& ws, double tolerance, int maxIterations,
-                  unsigned threads) {
+                  ThreadPool& pool) {
     const std::size_t n = rows.size();
     if (n == 0) return 0;
     const std::size_t blocks = (n + kBlock - 1) / kBlock;
-    const unsigned workers = n < kParallelFrom ? 1u : threads;
+    const double wall = meanWallLength(m);
+    const double stop = tolerance * tolerance * wall * wall * static_cast<double>(n);
+    XY *x = ws.x, *b = ws.b, *r = ws.r, *u = ws.u, *w = ws.w, *p = ws.p, *s = ws.s;
     auto range = [&](std::size_t k) {
         return std::pair{k * kBlock, std::min(n, (k + 1) * kBlock)};
     };
-    // Plain references, not a structured binding: lambdas below capture them, which C++20
-    // allows for references but clang (the fuzz build) does not for bindings.
-    std::vector<XY>&x = ws.x, &b = ws.b, &r = ws.r, &u = ws.u, &w = ws.w, &p = ws.p, &s = ws.s;
-    std::vector<double>&part1 = ws.part1, &part2 = ws.part2, &part3 = ws.part3;
-    std::fill(p.begin(), p.end(), XY{});
-    std::fill(s.begin(), s.end(), XY{});
+    // x, b (the outline's pull), p = s = 0.
+    auto load = [&](std::size_t k) {
+        auto [lo, hi] = range(k);
+        for (std::size_t i = lo; i < hi; ++i) {
+            const Vec3& q = m.position[rows.vertexOf[i]];
+            x[i] = {q.x, q.y};
+            XY pull{0, 0};
+            for (std::uint32_t c = rows.fixedStart[i]; c < rows.fixedStart[i + 1]; ++c) {
+                pull.x += m.position[rows.fixedCol[c]].x;
+                pull.y += m.position[rows.fixedCol[c]].y;
+            }
+            b[i] = pull;
+            p[i] = s[i] = XY{};
+        }
+    };
+    // r = b - A x, u = r / degree.
+    auto residual = [&](std::size_t k) {
+        auto [lo, hi] = range(k);
+        for (std::size_t i = lo; i < hi; ++i) {
+            XY acc{b[i].x - rows.degree[i] * x[i].x, b[i].y - rows.degree[i] * x[i].y};
+            for (std::uint32_t c = rows.start[i]; c < rows.start[i + 1]; ++c) {
+                acc.x += x[rows.col[c]].x;
+                acc.y += x[rows.col[c]].y;
+            }
+            r[i] = acc;
+            u[i] = {acc.x / rows.degree[i], acc.y / rows.degree[i]};
+        }
+    };
     // w = A u and the block's (r, u), (w, u) and (r, r).
-    auto multiply = [&](std::size_t k) {
+    auto multiply = [&](std::size_t k, int parity) {
         auto [lo, hi] = range(k);
         double ru = 0, wu = 0, rr = 0;
         for (std::size_t i = lo; i < hi; ++i) {
@@ -173,71 +236,76 @@ int solveInterior(PlaneMap& m, const Rows& rows, Workspace& ws, double tolerance
             wu += acc.x * u[i].x + acc.y * u[i].y;
             rr += r[i].x * r[i].x + r[i].y * r[i].y;
         }
-        part1[k] = ru;
-        part2[k] = wu;
-        part3[k] = rr;
+        ws.sums[parity][k] = {ru, wu, rr};
     };
-    // x, b (the outline's pull), r = b - A x, u = r / degree.
-    forEachBlock(blocks, workers, [&](std::size_t k) {
+    // The step along p and the next direction.
+    auto update = [&](std::size_t k, double alpha, double beta) {
         auto [lo, hi] = range(k);
         for (std::size_t i = lo; i < hi; ++i) {
-            const Vec3& q = m.position[rows.vertexOf[i]];
-            x[i] = {q.x, q.y};
-            XY pull{0, 0};
-            for (std::uint32_t c = rows.fixedStart[i]; c < rows.fixedStart[i + 1]; ++c) {
-                pull.x += m.position[rows.fixedCol[c]].x;
-                pull.y += m.position[rows.fixedCol[c]].y;
-            }
-            b[i] = pull;
+            p[i] = {u[i].x + beta * p[i].x, u[i].y + beta * p[i].y};
+            s[i] = {w[i].x + beta * s[i].x, w[i].y + beta * s[i].y};
+            x[i].x += alpha * p[i].x;
+            x[i].y += alpha * p[i].y;
+            r[i].x -= alpha * s[i].x;
+            r[i].y -= alpha * s[i].y;
+            u[i] = {r[i].x / rows.degree[i], r[i].y / rows.degree[i]};
         }
-    });
-    forEachBlock(blocks, workers, [&](std::size_t k) {
-        auto [lo, hi] = range(k);
-        for (std::size_t i = lo; i < hi; ++i) {
-            XY acc{b[i].x - rows.degree[i] * x[i].x, b[i].y - rows.degree[i] * x[i].y};
-            for (std::uint32_t c = rows.start[i]; c < rows.start[i + 1]; ++c) {
-                acc.x += x[rows.col[c]].x;
-                acc.y += x[rows.col[c]].y;
+    };
+    int done = 0;
+    pool.run([&](unsigned thread) {
+        const auto [first, last] = pool.share(thread, blocks);
+        for (std::size_t k = first; k < last; ++k) load(k);
+        pool.barrier();
+        for (std::size_t k = first; k < last; ++k) residual(k);
+        pool.barrier();
+        for (std::size_t k = first; k < last; ++k) multiply(k, 0);
+        pool.barrier();
+        const Sums initial = sumInOrder(ws.sums[0]);
+        double gamma = initial.ru, delta = initial.wu, rr = initial.rr;
+        double alpha = delta > 0 ? gamma / delta : 0, beta = 0;
+        int iterations = 0;
+        std::vector<std::size_t> deferred;
+        while (iterations < maxIterations && rr > stop && delta > 0) {
+            ++iterations;
+            // One sweep: block k updated, then every block whose neighbours are all updated
+            // is multiplied while its rows are still in the cache. Blocks that read rows of
+            // another thread's share wait for the barrier.
+            deferred.clear();
+            std::size_t pending = first;
+            for (std::size_t k = first; k < last; ++k) {
+                update(k, alpha, beta);
+                for (; pending <= k && rows.reachTo[pending] <= k; ++pending) {
+                    if (rows.reachFrom[pending] >= first)
+                        multiply(pending, iterations % 2);
+                    else
+                        deferred.push_back(pending);
+                }
             }
-            r[i] = acc;
-            u[i] = {acc.x / rows.degree[i], acc.y / rows.degree[i]};
+            for (; pending < last; ++pending) deferred.push_back(pending);
+            pool.barrier();
+            for (std::size_t k : deferred) multiply(k, iterations % 2);
+            pool.barrier();
+            const Sums sums = sumInOrder(ws.sums[iterations % 2]);
+            const double next = sums.ru;
+            delta = sums.wu;
+            rr = sums.rr;
+            beta = next / gamma;
+            const double denominator = delta - beta * next / alpha;
+            if (!(denominator > 0)) break;
+            alpha = next / denominator;
+            gamma = next;
         }
-    });
-    forEachBlock(blocks, workers, multiply);
-    double gamma = sumInOrder(part1), delta = sumInOrder(part2), rr = sumInOrder(part3);
-    const double wall = meanWallLength(m);
-    const double stop = tolerance * tolerance * wall * wall * static_cast<double>(n);
-    double alpha = delta > 0 ? gamma / delta : 0, beta = 0;
-    int iterations = 0;
-    while (iterations < maxIterations && rr > stop && delta > 0) {
-        ++iterations;
-        forEachBlock(blocks, workers, [&](std::size_t k) {
+        // Every thread writes back its own rows; no other thread reads them any more.
+        for (std::size_t k = first; k < last; ++k) {
             auto [lo, hi] = range(k);
             for (std::size_t i = lo; i < hi; ++i) {
-                p[i] = {u[i].x + beta * p[i].x, u[i].y + beta * p[i].y};
-                s[i] = {w[i].x + beta * s[i].x, w[i].y + beta * s[i].y};
-                x[i].x += alpha * p[i].x;
-                x[i].y += alpha * p[i].y;
-                r[i].x -= alpha * s[i].x;
-                r[i].y -= alpha * s[i].y;
-                u[i] = {r[i].x / rows.degree[i], r[i].y / rows.degree[i]};
+                m.position[rows.vertexOf[i]].x = x[i].x;
+                m.position[rows.vertexOf[i]].y = x[i].y;
             }
-        });
-        forEachBlock(blocks, workers, multiply);
-        const double next = sumInOrder(part1);
-        delta = sumInOrder(part2);
-        rr = sumInOrder(part3);
-        beta = next / gamma;
-        const double denominator = delta - beta * next / alpha;
-        if (!(denominator > 0)) break;
-        alpha = next / denominator;
-        gamma = next;
-    }
-    for (std::size_t i = 0; i < n; ++i) {
-        m.position[rows.vertexOf[i]].x = x[i].x;
-        m.position[rows.vertexOf[i]].y = x[i].y;
-    }
-    return iterations;
+        }
+        if (thread == 0) done = iterations;
+    });
+    return done;
 }
 
 }  // namespace
@@ -246,21 +314,23 @@ int relaxMap(PlaneMap& map, const MapDerivationOptions& options) {
     const unsigned threads = options.threads == 0 ? defaultThreadCount() : options.threads;
     const Rows rows = buildRows(map);
     Workspace ws(rows.size(), (rows.size() + kBlock - 1) / kBlock);
+    // One team for all the solves of this relaxation; small maps are solved by the caller
+    // alone.
+    ThreadPool pool(rows.size() < kParallelFrom ? 1u : threads);
     if (options.outline == MapOutline::Polygon) {
         placeOutlineOnPolygon(map);
-        return solveInterior(map, rows, ws, options.relaxTolerance, options.relaxIterations,
-                             threads);
+        return solveInterior(map, rows, ws, options.relaxTolerance, options.relaxIterations, pool);
     }
     // The growing outline: rounds of (interior settled roughly, outline moved), then the
     // interior settled for the outline where it ends.
     int iterations = 0;
     for (int round = 0; round < options.outlineRounds; ++round) {
         iterations += solveInterior(map, rows, ws, std::max(options.relaxTolerance, 3e-2),
-                                    options.relaxIterations, threads);
+                                    options.relaxIterations, pool);
         moveGrowingOutline(map);
     }
     return iterations +
-           solveInterior(map, rows, ws, options.relaxTolerance, options.relaxIterations, threads);
+           solveInterior(map, rows, ws, options.relaxTolerance, options.relaxIterations, pool);
 }
 
 }  // namespace graftal
