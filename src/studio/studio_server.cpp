@@ -222,6 +222,12 @@ struct StudioServer::Impl {
 
     void routes() {
         server.set_payload_max_length(options.limits.bodyBytes);
+        // httplib writes an answer's headers and its body apart. With Nagle's algorithm on,
+        // the body's last piece waits for the headers' ACK, which the browser delays by up
+        // to 40 ms (it has nothing to send back): a third of a keystroke's time budget.
+        // Debian builds httplib as a library, so CPPHTTPLIB_TCP_NODELAY defined here would
+        // not reach the server's constructor: the setting is made at run time.
+        server.set_tcp_nodelay(true);
         // Only this machine's own pages: a page of another site that points a name at
         // 127.0.0.1 (DNS rebinding) names its own host.
         server.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
