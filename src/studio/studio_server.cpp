@@ -320,20 +320,15 @@ struct StudioServer::Impl {
                         std::shared_ptr<const StudioPicture> picture = sessions.kept(session, key);
                         const bool reused = picture != nullptr;
                         const bool unchanged = reused && body.value("have", "") == tag;
-                        double encodeMs = 0;
                         if (!picture) {
                             LiveRequest live(liveRequests);
-                            auto made = std::make_shared<StudioPicture>(
+                            picture = std::make_shared<StudioPicture>(
                                 derivePicture(input, options.limits, token, scratch));
-                            const auto encodeStart = std::chrono::steady_clock::now();
-                            if (made->summaryPng.empty()) made->lines = encodeLines(made->scene);
-                            encodeMs = millisecondsSince(encodeStart);
-                            picture = made;
                             sessions.keep(session, key, picture);
                         }
                         const bool summarised = !picture->summaryPng.empty();
                         json stats = picture->stats;
-                        stats["encodeMs"] = encodeMs;
+                        if (reused) stats["encodeMs"] = 0;
                         stats["reused"] = reused;
                         stats["serverMs"] = millisecondsSince(received);
                         json meta = {
@@ -346,8 +341,8 @@ struct StudioServer::Impl {
                             {"geometry", unchanged    ? "none"
                                          : summarised ? "png"
                                                       : "lines"},
-                            {"meshAvailable", !summarised && picture->scene.segments.size() <=
-                                                                 options.limits.meshSegmentBudget}};
+                            {"meshAvailable",
+                             !summarised && picture->segments <= options.limits.meshSegmentBudget}};
                         std::string out(4, '\0');
                         const std::string metaText = meta.dump();
                         const std::uint32_t length = static_cast<std::uint32_t>(metaText.size());
@@ -373,7 +368,7 @@ struct StudioServer::Impl {
                                 derivePicture(input, options.limits, token, scratch));
                         }
                         if (!picture->summaryPng.empty() ||
-                            picture->scene.segments.size() > options.limits.meshSegmentBudget) {
+                            picture->segments > options.limits.meshSegmentBudget) {
                             sendError(res, 413,
                                       "over the mesh budget of " +
                                           std::to_string(options.limits.meshSegmentBudget) +
