@@ -2,6 +2,7 @@
 // and a run per change of width or colour, and everything that is not a segment in a Scene.
 #include "graftal/polyline_scene.hpp"
 
+#include "core/huge_pages.hpp"
 #include "planar_length.hpp"
 #include "turtle_machine.hpp"
 
@@ -67,6 +68,19 @@ void PolylineScene::clear() {
 
 void interpretPolylines(const Model& model, const ModuleString& modules, PolylineScene& out) {
     out.clear();
+    // Room for every point at once: a segment per F or G, and a jump before each at most.
+    // Growing the buffer instead would copy it into fresh pages several times, which costs
+    // more than the walk; room never written costs no memory.
+    const std::array<turtle::TurtleOp, kMaxSymbols> ops = turtle::opTable(model.lsystem);
+    std::size_t forward = 0;
+    for (Symbol s : modules.symbols())
+        forward +=
+            ops[s] == turtle::TurtleOp::Forward || ops[s] == turtle::TurtleOp::ForwardNoVertex;
+    if (out.points.capacity() < 2 * forward + 1) {
+        out.points = std::vector<Vec3>();
+        out.points.reserve(2 * forward + 1);
+        adviseHugePages(out.points);
+    }
     PolylineSink sink(out);
     turtle::TurtleMachine<PolylineSink> machine(model.lsystem, model.view, sink);
     machine.run(modules);
