@@ -261,7 +261,10 @@ nlohmann::json diagnosticsJson(const std::vector<Diagnostic>& diagnostics) {
 }
 
 nlohmann::json parseReport(const ModelInput& input) {
-    const ParseResult result = parseInput(input);
+    return parseReport(input, parseInput(input));
+}
+
+nlohmann::json parseReport(const ModelInput& input, const ParseResult& result) {
     nlohmann::json defines = nlohmann::json::array();
     for (const NumericDefine& d : numericDefines(input.text))
         defines.push_back(
@@ -276,8 +279,13 @@ nlohmann::json parseReport(const ModelInput& input) {
 
 StudioPicture derivePicture(const ModelInput& input, const StudioLimits& limits,
                             const CancellationToken& cancel, const fs::path& scratch) {
+    return derivePicture(input, parseOrThrow(input), limits, cancel, scratch);
+}
+
+StudioPicture derivePicture(const ModelInput& input, Model parsed, const StudioLimits& limits,
+                            const CancellationToken& cancel, const fs::path& scratch) {
     StudioPicture picture;
-    picture.model = parseOrThrow(input);
+    picture.model = std::move(parsed);
     const Model& model = picture.model;
     const DeriveRequest request = deriveRequest(input, limits, cancel);
     picture.steps = checkedSteps(model, request, limits);

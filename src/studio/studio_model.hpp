@@ -77,6 +77,8 @@ std::string pictureTag(const std::string& key);
 
 // {ok, diagnostics, defines, derivationLength, name}: never throws for bad text.
 nlohmann::json parseReport(const ModelInput& input);
+// The same from the input's parse result (parseInput), when the caller has it already.
+nlohmann::json parseReport(const ModelInput& input, const ParseResult& result);
 
 // A derived model ready to draw: its line buffer, or a summarised PNG when over the budget.
 // The derived string is kept, not its scene: the 3D view's mesh interprets it again when
@@ -96,6 +98,9 @@ struct StudioPicture {
 // Parses, derives, interprets and encodes the line buffer. Throws Error (with every parse
 // error), Cancelled when `cancel` is raised or the derivation outlasts the limit.
 StudioPicture derivePicture(const ModelInput& input, const StudioLimits& limits,
+                            const CancellationToken& cancel, const std::filesystem::path& scratch);
+// The same for the model parsed from `input` (parseInput, without errors).
+StudioPicture derivePicture(const ModelInput& input, Model parsed, const StudioLimits& limits,
                             const CancellationToken& cancel, const std::filesystem::path& scratch);
 
 // The picture's mesh (stems as tubes, polygons, surfaces) as glTF binary: repeated organs

@@ -72,6 +72,13 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
         .count();
 }
 
+// Milliseconds since 1970, as the page's performance.timeOrigin + performance.now().
+double epochMilliseconds() {
+    return std::chrono::duration<double, std::milli>(
+               std::chrono::system_clock::now().time_since_epoch())
+        .count();
+}
+
 // Counts the derivations the page waits for while it lives; thumbnails wait for none.
 class LiveRequest {
   public:
@@ -308,50 +315,79 @@ struct StudioServer::Impl {
         // a multiple of 4, then the line buffer (encodeLines) or a summarised PNG. A
         // request whose picture key is the session's last one reuses that picture; when the
         // page says it shows it already (`have`: its tag) the answer carries no geometry.
-        server.Post("/api/derive",
-                    guarded([this](const httplib::Request& req, httplib::Response& res) {
-                        const auto received = std::chrono::steady_clock::now();
-                        const json body = parseBody(req);
-                        const ModelInput input = modelInput(body);
-                        const std::string session = sessionOf(body);
-                        const std::string key = pictureKey(input);
-                        const std::string tag = pictureTag(key);
-                        const CancellationToken token = sessions.begin(session);
-                        std::shared_ptr<const StudioPicture> picture = sessions.kept(session, key);
-                        const bool reused = picture != nullptr;
-                        const bool unchanged = reused && body.value("have", "") == tag;
-                        if (!picture) {
-                            LiveRequest live(liveRequests);
-                            picture = std::make_shared<StudioPicture>(
-                                derivePicture(input, options.limits, token, scratch));
-                            sessions.keep(session, key, picture);
-                        }
-                        const bool summarised = !picture->summaryPng.empty();
-                        json stats = picture->stats;
-                        if (reused) stats["encodeMs"] = 0;
-                        stats["reused"] = reused;
-                        stats["serverMs"] = millisecondsSince(received);
-                        json meta = {
-                            {"stats", stats},
-                            {"steps", picture->steps},
-                            {"tag", tag},
-                            {"unchanged", unchanged},
-                            {"string", unchanged ? std::string() : picture->stringHead},
-                            {"notes", picture->notes},
-                            {"geometry", unchanged    ? "none"
-                                         : summarised ? "png"
-                                                      : "lines"},
-                            {"meshAvailable",
-                             !summarised && picture->segments <= options.limits.meshSegmentBudget}};
-                        std::string out(4, '\0');
-                        const std::string metaText = meta.dump();
-                        const std::uint32_t length = static_cast<std::uint32_t>(metaText.size());
-                        std::memcpy(out.data(), &length, 4);
-                        out += metaText;
-                        out.append((4 - out.size() % 4) % 4, ' ');
-                        if (!unchanged) out += summarised ? picture->summaryPng : picture->lines;
-                        res.set_content(std::move(out), "application/octet-stream");
-                    }));
+        server.Post(
+            "/api/derive", guarded([this](const httplib::Request& req, httplib::Response& res) {
+                const auto received = std::chrono::steady_clock::now();
+                const double receivedAt = epochMilliseconds();
+                const json body = parseBody(req);
+                const ModelInput input = modelInput(body);
+                const std::string session = sessionOf(body);
+                const std::string key = pictureKey(input);
+                const std::string tag = pictureTag(key);
+                const CancellationToken token = sessions.begin(session);
+                // The parse report comes with the picture (or the errors): one
+                // request a keystroke, one parse of the text.
+                ParseResult parsed = parseInput(input);
+                const json report = parseReport(input, parsed);
+                if (!parsed.ok()) {
+                    sendJson(res,
+                             {{"error", Error(parsed.errors()).messages()},
+                              {"diagnostics", report["diagnostics"]},
+                              {"report", report}},
+                             422);
+                    return;
+                }
+                std::shared_ptr<const StudioPicture> picture = sessions.kept(session, key);
+                const bool reused = picture != nullptr;
+                const bool unchanged = reused && body.value("have", "") == tag;
+                if (!picture) {
+                    LiveRequest live(liveRequests);
+                    try {
+                        picture = std::make_shared<StudioPicture>(derivePicture(
+                            input, std::move(parsed.model), options.limits, token, scratch));
+                    } catch (const Cancelled&) {
+                        throw;
+                    } catch (const Error& e) {  // the turtle's, the limits': with the report
+                        sendJson(res,
+                                 {{"error", e.messages()},
+                                  {"diagnostics", diagnosticsJson(e.diagnostics())},
+                                  {"report", report}},
+                                 422);
+                        return;
+                    }
+                    sessions.keep(session, key, picture);
+                }
+                const bool summarised = !picture->summaryPng.empty();
+                json stats = picture->stats;
+                if (reused) stats["encodeMs"] = 0;
+                stats["reused"] = reused;
+                stats["serverMs"] = millisecondsSince(received);
+                // The page's clock and this one are the machine's: it splits the
+                // time before, in and after the server with these.
+                stats["receivedAt"] = receivedAt;
+                stats["answeredAt"] = epochMilliseconds();
+                json meta = {
+                    {"stats", stats},
+                    {"report", report},
+                    {"steps", picture->steps},
+                    {"tag", tag},
+                    {"unchanged", unchanged},
+                    {"string", unchanged ? std::string() : picture->stringHead},
+                    {"notes", picture->notes},
+                    {"geometry", unchanged    ? "none"
+                                 : summarised ? "png"
+                                              : "lines"},
+                    {"meshAvailable",
+                     !summarised && picture->segments <= options.limits.meshSegmentBudget}};
+                std::string out(4, '\0');
+                const std::string metaText = meta.dump();
+                const std::uint32_t length = static_cast<std::uint32_t>(metaText.size());
+                std::memcpy(out.data(), &length, 4);
+                out += metaText;
+                out.append((4 - out.size() % 4) % 4, ' ');
+                if (!unchanged) out += summarised ? picture->summaryPng : picture->lines;
+                res.set_content(std::move(out), "application/octet-stream");
+            }));
 
         // The 3D view's mesh, from the picture the last derive made (or derived again).
         server.Post("/api/mesh",

@@ -10,6 +10,7 @@ async function failure(res) {
   error.status = res.status;
   error.diagnostics = body.diagnostics || [];
   error.cancelled = !!body.cancelled;
+  error.report = body.report;
   return error;
 }
 
@@ -48,16 +49,24 @@ export async function parse(model) {
 }
 
 // {meta, lines} or {meta, png}; only {meta} when meta.unchanged (the page has the picture).
+// `times`: when the request left, its headers and its body came, and it was decoded (the
+// page's clock, performance.now()).
 export async function derive(model) {
-  const buffer = await (await post('/api/derive', model)).arrayBuffer();
+  const sent = performance.now();
+  const res = await post('/api/derive', model);
+  const headers = performance.now();
+  const buffer = await res.arrayBuffer();
+  const body = performance.now();
   const length = new DataView(buffer).getUint32(0, true);
   const meta = JSON.parse(new TextDecoder().decode(new Uint8Array(buffer, 4, length)));
   let start = 4 + length;
   start += (4 - (start % 4)) % 4;
   const bytes = buffer.byteLength;
-  if (meta.geometry === 'none') return { meta, bytes };
-  if (meta.geometry === 'png') return { meta, bytes, png: new Blob([buffer.slice(start)], { type: 'image/png' }) };
-  return { meta, bytes, lines: decodeLines(buffer, start) };
+  const result = { meta, bytes, times: { sent, headers, body } };
+  if (meta.geometry === 'png') result.png = new Blob([buffer.slice(start)], { type: 'image/png' });
+  else if (meta.geometry === 'lines') result.lines = decodeLines(buffer, start);
+  result.times.decoded = performance.now();
+  return result;
 }
 
 // The line buffer (docs/studio.md): header (magic, segments, triangles, flags, points,
