@@ -237,6 +237,47 @@ try {
   await nextPicture(before);
   await exportDownload('mid', (b) => b.toString('latin1', 0, 4) === 'MThd' && b.includes('MTrk') && b.length > 100,
     'fig6.9-hilbert-music.mid', true);
+  // The same curve as sound, and its growth as an animated WebP and an MP4, read back by
+  // their headers: RIFF sizes that match the file, the WAV's format and samples, the
+  // WebP's animation chunk, the MP4's boxes.
+  const riff = (b, kind) => b.toString('latin1', 0, 4) === 'RIFF' && b.toString('latin1', 8, 12) === kind &&
+    b.readUInt32LE(4) === b.length - 8;
+  await exportDownload('wav', (b) => {
+    const data = b.indexOf('data', 12, 'latin1');
+    return riff(b, 'WAVE') && b.toString('latin1', 12, 16) === 'fmt ' && b.readUInt16LE(20) === 1 &&
+      b.readUInt32LE(24) >= 8000 && data > 0 && b.readUInt32LE(data + 4) > 10000;
+  }, 'fig6.9-hilbert-music.wav', true);
+  await exportDownload('webp', (b) => riff(b, 'WEBP') && b.toString('latin1', 12, 16) === 'VP8X' &&
+    b.includes('ANIM') && b.includes('ANMF'), 'fig6.9-hilbert-music.webp', true);
+  await exportDownload('mp4', (b) => b.toString('latin1', 4, 8) === 'ftyp' && b.includes('moov') &&
+    b.includes('mdat') && b.length > 2000, 'fig6.9-hilbert-music.mp4', true);
+
+  console.log('- A view file beside the model');
+  // A .v file beside a model applies to it: its initial colour redraws the curve in
+  // another ink, and the page names the view file.
+  const viewed = 'zz-viewed.l';
+  fs.writeFileSync(path.join(root, viewed), '/* Koch curve */\nLsystem: 1\nderivation length: 3\nangle factor: 4\naxiom: F\nF --> F+F-F-F+F\nendlsystem\n');
+  await page.reload();
+  await page.waitForSelector('body[data-ready="true"]', { timeout: 30000 });
+  before = await pictures();
+  await page.click(`#file-list .file[data-path="${viewed}"]`);
+  await nextPicture(before);
+  const plain = await pixels('#view2d');
+  assert.ok(plain.ink > 200, `the Koch curve is drawn (${plain.ink} pixels)`);
+  assert.equal(await page.textContent('#view-file'), '');
+  fs.writeFileSync(path.join(root, 'zz-viewed.v'), 'initial color: 2\n');
+  await page.evaluate(() => {
+    const view = window.studio.editor;
+    view.focus();
+    view.dispatch({ selection: { anchor: view.state.doc.toString().indexOf(' */') } });
+  });
+  before = await pictures();
+  await page.keyboard.type('x');
+  await nextPicture(before);
+  assert.equal(await page.textContent('#view-file'), 'with zz-viewed.v');
+  const coloured = await pixels('#view2d');
+  assert.notEqual(coloured.hash, plain.hash, 'the view file changes the picture');
+  assert.ok(Math.abs(coloured.ink - plain.ink) < plain.ink / 5, 'the same curve, in another colour');
 
   console.log('- Speed');
   // Speed: keystroke to picture at ~10^5 segments, first picture at ~10^6.
