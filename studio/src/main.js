@@ -88,7 +88,8 @@ function refresh() {
     if (seq < state.shown) return;
     state.shown = seq;
     const arrived = performance.now();
-    showReport(result.meta.report);
+    // The panels after the picture: the picture is what the keystroke waits for.
+    setTimeout(() => { if (seq === state.shown) showReport(result.meta.report); }, 0);
     // The same picture as shown (an edit in a comment): nothing to draw.
     if (!result.meta.unchanged) {
       state.last = result;
