@@ -305,6 +305,9 @@ async function watch(path) {
     if (state.path !== path || !r.changed) continue;
     state.mtime = r.mtime;
     const f = await api.readFile(path);
+    // Another file may have been opened meanwhile (leaving this one saved it, which is the
+    // change seen): its text must not be replaced by this one's.
+    if (state.path !== path) return;
     if (f.text === text()) { state.savedText = f.text; continue; }
     if (text() === state.savedText) {
       state.savedText = f.text;

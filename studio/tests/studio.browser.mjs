@@ -279,11 +279,28 @@ try {
   assert.notEqual(coloured.hash, plain.hash, 'the view file changes the picture');
   assert.ok(Math.abs(coloured.ink - plain.ink) < plain.ink / 5, 'the same curve, in another colour');
 
-  console.log('- Speed');
-  // Speed: keystroke to picture at ~10^5 segments, first picture at ~10^6.
+  console.log('- Another file opened while the last one is saved');
+  // Opening a file saves the one left, whose watch then sees it change and reads it again:
+  // that answer (held back here) comes after the new file is open, and must not put the
+  // old text back into the editor (nor so into the new file).
+  const heldBack = (url) => url.pathname === '/api/file' && url.searchParams.get('path') === viewed;
+  await page.route(heldBack, async (route) => {
+    if (route.request().method() === 'GET') await new Promise((r) => setTimeout(r, 1500));
+    await route.continue();
+  });
+  await page.keyboard.type('y');
   before = await pictures();
   await page.click('#file-list .file[data-path="zz-dragon-1e5.l"]');
   await nextPicture(before);
+  await page.waitForTimeout(2500);
+  await page.unroute(heldBack);
+  assert.ok(fs.readFileSync(path.join(root, viewed), 'utf8').includes('Koch curvexy'), 'the file left was saved');
+  assert.ok((await page.evaluate(() => window.studio.editor.state.doc.toString())).includes('2^17 segments'),
+    'the editor keeps the file opened');
+  assert.ok(fs.readFileSync(path.join(root, 'zz-dragon-1e5.l'), 'utf8').includes('2^17 segments'));
+
+  console.log('- Speed');
+  // Speed: keystroke to picture at ~10^5 segments, first picture at ~10^6.
   // Two kinds of keystroke: one that changes the model (the angle factor's digit, 4 and
   // 3 in turn: every picture is new) and one in a comment (the picture is the same).
   const keystroke = async (find, typed) => {
