@@ -5,12 +5,16 @@
 
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 
+#include "graftal/bspline.hpp"
 #include "graftal/model.hpp"
 #include "graftal/polyline_scene.hpp"
 #include "graftal/turtle.hpp"
 #include "studio/line_buffer.hpp"
+#include "studio/studio_model.hpp"
 
 namespace fs = std::filesystem;
 using namespace graftal;
@@ -81,6 +85,33 @@ endlsystem
     const std::string first = studio::encodeLines(lines);
     interpretPolylines(parsed.model, deriveWithQueries(parsed.model), lines);
     EXPECT_TRUE(studio::encodeLines(lines) == first);
+}
+
+// The studio's picture: the lines of the interpreted scene, smoothed when the model asks
+// for B-splines (which keep the Scene's path), and its 3D scene made again from the kept
+// string; a homomorphism applied before the turtle.
+TEST(StudioLines, ThePictureSendsTheLinesOfItsScene) {
+    for (const char* name :
+         {"fig2.11b-bspline.l", "fig2.11a-straight-lines.l", "fig3.8-fern-3d.l"}) {
+        const fs::path file = fs::path(GRAFTAL_EXAMPLES_DIR) / name;
+        studio::ModelInput input;
+        input.file = file;
+        std::ifstream in(file);
+        input.text.assign(std::istreambuf_iterator<char>(in), {});
+        const studio::StudioPicture picture = studio::derivePicture(
+            input, studio::StudioLimits{}, CancellationToken{}, fs::temp_directory_path());
+        ParseResult parsed = loadModel(file);
+        ASSERT_TRUE(parsed.ok()) << name;
+        ModuleString modules = deriveWithQueries(parsed.model);
+        if (!parsed.model.lsystem.homomorphism.empty())  // the fern draws through one
+            modules = applyHomomorphism(parsed.model.lsystem, modules);
+        Scene scene = interpret(parsed.model, modules);
+        if (int n = parsed.model.view.splineSubdivisions; n > 0) scene = smoothSegments(scene, n);
+        EXPECT_EQ(picture.segments, scene.segments.size()) << name;
+        EXPECT_EQ(picture.stats["segments"], scene.segments.size()) << name;
+        EXPECT_TRUE(picture.lines == studio::encodeLines(scene)) << name;
+        EXPECT_EQ(studio::pictureScene(picture).segments.size(), scene.segments.size()) << name;
+    }
 }
 
 }  // namespace
