@@ -12,7 +12,8 @@ add_library(graftal_studio STATIC
   src/studio/studio_root.cpp
   src/studio/studio_model.cpp
   src/studio/studio_server.cpp
-  src/studio/zip_archive.cpp)
+  src/studio/zip_archive.cpp
+  src/studio/line_buffer.cpp)
 set_target_properties(graftal_studio PROPERTIES POSITION_INDEPENDENT_CODE ON)
 target_include_directories(graftal_studio PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/src)
 target_compile_options(graftal_studio PRIVATE ${GRAFTAL_WARNINGS})

@@ -10,6 +10,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <memory>
+#include <mutex>
 #include <sstream>
 
 #include "graftal/animation.hpp"
@@ -21,6 +23,7 @@
 #include "graftal/output.hpp"
 #include "graftal/parser_target.hpp"
 #include "graftal/pipeline.hpp"
+#include "graftal/polyline_scene.hpp"
 #include "graftal/projection.hpp"
 #include "graftal/streamed_picture.hpp"
 #include "graftal/surface.hpp"
@@ -113,17 +116,35 @@ SurfaceLibrary surfacesFor(const ViewSettings& view, const fs::path& folder) {
     return lib;
 }
 
-template <typename T>
-void appendRaw(std::string& out, const T* data, std::size_t count) {
-    out.append(reinterpret_cast<const char*>(data), count * sizeof(T));
+// The turtle's polylines of earlier requests, kept with their memory: a keystroke then
+// writes into pages it has written before instead of faulting in fresh ones.
+std::mutex workspaceMutex;
+std::vector<std::unique_ptr<PolylineScene>> workspaces;
+
+std::unique_ptr<PolylineScene> takeWorkspace() {
+    std::lock_guard lock(workspaceMutex);
+    if (workspaces.empty()) return std::make_unique<PolylineScene>();
+    std::unique_ptr<PolylineScene> w = std::move(workspaces.back());
+    workspaces.pop_back();
+    return w;
 }
 
-// R, G, B, A bytes in memory order (a little-endian uint32).
-std::uint32_t rgbaBytes(const Rgb& c) {
-    auto byte = [](double v) {
-        return static_cast<std::uint32_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255));
-    };
-    return byte(c.r) | byte(c.g) << 8 | byte(c.b) << 16 | 0xFF000000u;
+void returnWorkspace(std::unique_ptr<PolylineScene> w) {
+    constexpr std::size_t kKept = 2;  // as many as derivations run at once, about
+    w->rest = Scene{};
+    std::lock_guard lock(workspaceMutex);
+    if (workspaces.size() < kKept) workspaces.push_back(std::move(w));
+}
+
+// What interpret() draws of a derived (and homomorphism-applied) string, smoothed and
+// coloured as the view file says.
+Scene sceneOf(const Model& model, const ModuleString& modules) {
+    Scene scene = interpret(model, modules);
+    if (int n = model.view.splineSubdivisions; n > 0) scene = smoothSegments(scene, n);
+    if (!model.view.colorMap.empty())
+        scene.palette =
+            loadColorMap(fs::path(model.lsystem.file).parent_path() / model.view.colorMap);
+    return scene;
 }
 
 }  // namespace
@@ -240,7 +261,10 @@ nlohmann::json diagnosticsJson(const std::vector<Diagnostic>& diagnostics) {
 }
 
 nlohmann::json parseReport(const ModelInput& input) {
-    const ParseResult result = parseInput(input);
+    return parseReport(input, parseInput(input));
+}
+
+nlohmann::json parseReport(const ModelInput& input, const ParseResult& result) {
     nlohmann::json defines = nlohmann::json::array();
     for (const NumericDefine& d : numericDefines(input.text))
         defines.push_back(
@@ -255,8 +279,13 @@ nlohmann::json parseReport(const ModelInput& input) {
 
 StudioPicture derivePicture(const ModelInput& input, const StudioLimits& limits,
                             const CancellationToken& cancel, const fs::path& scratch) {
+    return derivePicture(input, parseOrThrow(input), limits, cancel, scratch);
+}
+
+StudioPicture derivePicture(const ModelInput& input, Model parsed, const StudioLimits& limits,
+                            const CancellationToken& cancel, const fs::path& scratch) {
     StudioPicture picture;
-    picture.model = parseOrThrow(input);
+    picture.model = std::move(parsed);
     const Model& model = picture.model;
     const DeriveRequest request = deriveRequest(input, limits, cancel);
     picture.steps = checkedSteps(model, request, limits);
@@ -290,30 +319,44 @@ StudioPicture derivePicture(const ModelInput& input, const StudioLimits& limits,
                          modules.params(i));
     const std::size_t moduleCount = modules.size();
 
-    const auto drawStart = Clock::now();
-    Scene scene = model.lsystem.homomorphism.empty()
-                      ? interpret(model, modules)
-                      : interpret(model, applyHomomorphism(model.lsystem, modules, options));
-    modules = ModuleString{};
+    if (!model.lsystem.homomorphism.empty())
+        modules = applyHomomorphism(model.lsystem, modules, options);
     cancel.check();
-    if (int n = model.view.splineSubdivisions; n > 0) scene = smoothSegments(scene, n);
-    if (!model.view.colorMap.empty())
-        scene.palette = loadColorMap(input.file.parent_path() / model.view.colorMap);
+
+    // The turtle writes polylines into a workspace of an earlier request (no Scene of 88
+    // bytes a segment, no fresh pages); a smoothed model needs the scene's segments.
+    const auto drawStart = Clock::now();
+    std::unique_ptr<PolylineScene> lines = takeWorkspace();
+    if (model.view.splineSubdivisions > 0) {
+        const Scene scene = sceneOf(model, modules);
+        lines->clear();
+        lines->rest = scene;  // the summary and the stats read it; encoded as a scene
+        lines->segments = scene.segments.size();
+        lines->segmentBounds = scene.bounds();
+    } else {
+        interpretPolylines(model, modules, *lines);
+        if (!model.view.colorMap.empty())
+            lines->rest.palette = loadColorMap(input.file.parent_path() / model.view.colorMap);
+    }
     const double drawMs = millisecondsSince(drawStart);
+    cancel.check();
+    const Scene& rest = lines->rest;
+    picture.segments = lines->segments;
 
     const std::size_t organs =
-        scene.polygonCount() + scene.surfaces.size() + scene.discs.size() + scene.spheres.size();
+        rest.polygonCount() + rest.surfaces.size() + rest.discs.size() + rest.spheres.size();
     picture.stats = {{"steps", steps},
                      {"modules", moduleCount},
-                     {"segments", scene.segments.size()},
+                     {"segments", lines->segments},
                      {"polygons", organs},
-                     {"bbox", boundsJson(scene.bounds())},
-                     {"is3D", scene.is3D},
+                     {"bbox", boundsJson(lines->bounds())},
+                     {"is3D", rest.is3D},
                      {"deriveMs", deriveMs},
                      {"drawMs", drawMs},
                      {"summarised", false}};
-    if (scene.segments.size() > limits.segmentBudget) {
+    if (lines->segments > limits.segmentBudget) {
         // Over the budget the browser gets a picture, not the segments.
+        const Scene scene = sceneOf(model, modules);
         RenderOptions render;
         if (model.view.background) render.background = *model.view.background;
         const fs::path png = scratchFile(scratch, "png");
@@ -323,129 +366,23 @@ StudioPicture derivePicture(const ModelInput& input, const StudioLimits& limits,
                                 " segments are over the studio's budget of " +
                                 std::to_string(limits.segmentBudget) + ": a summarised picture");
         picture.stats["summarised"] = true;
-        scene = Scene{};
+        returnWorkspace(std::move(lines));
+        return picture;
     }
-    picture.scene = std::move(scene);
+    const auto encodeStart = Clock::now();
+    picture.lines = rest.segments.empty() ? encodeLines(*lines) : encodeLines(rest);
+    picture.stats["encodeMs"] = millisecondsSince(encodeStart);
+    returnWorkspace(std::move(lines));
+    picture.modules = std::move(modules);
     return picture;
 }
 
-std::string encodeLines(const Scene& scene) {
-    // The segments as polylines: each point once, as 16-bit fractions of the bounding box
-    // (a 65536th of the picture is far below a pixel until zoomed 80 times), and runs of
-    // links sharing a width and a colour. A turtle's path is mostly joined, so a flat
-    // segment costs 4 bytes and a few per run instead of two end points each; bytes are
-    // what it costs to move a picture into the page.
-    const std::size_t n = scene.segments.size();
-    const std::size_t dims = scene.is3D ? 3 : 2;
-    const Bounds b = scene.bounds();
-    const bool empty = b.empty();
-    const Vec3 origin = empty ? Vec3{} : b.min;
-    const Vec3 size = empty ? Vec3{} : b.max - b.min;
-    auto quantizer = [](double extent) { return extent > 0 ? 65535.0 / extent : 0.0; };
-    const double qx = quantizer(size.x), qy = quantizer(size.y), qz = quantizer(size.z);
-    auto q = [](double v, double scale) {
-        return static_cast<std::uint16_t>(std::clamp(std::lround(v * scale), 0L, 65535L));
-    };
-    float maxWidth = 0;
-    for (const Segment& s : scene.segments) maxWidth = std::max(maxWidth, s.width);
-    const double widthScale = maxWidth > 0 ? 65535.0 / maxWidth : 0.0;
-    const std::size_t paletteSize = std::clamp<std::size_t>(scene.palette.size(), 1, 65535);
-
-    struct Run {
-        std::uint32_t links;
-        std::uint16_t width, color;  // color kJump: the pen moves, nothing is drawn
-    };
-    constexpr std::uint16_t kJump = 0xFFFF;
-    std::vector<std::uint16_t> points;
-    points.reserve(dims * (n + n / 8 + 1));
-    std::vector<Run> runs;
-    auto link = [&](std::uint16_t width, std::uint16_t color) {
-        if (!runs.empty() && runs.back().width == width && runs.back().color == color)
-            ++runs.back().links;
-        else
-            runs.push_back({1, width, color});
-    };
-    std::uint16_t last[3] = {0, 0, 0};
-    double ink = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-        const Segment& s = scene.segments[i];
-        const Vec3 a = s.a - origin, e = s.b - origin;
-        const std::uint16_t from[3] = {q(a.x, qx), q(a.y, qy), q(a.z, qz)};
-        const std::uint16_t to[3] = {q(e.x, qx), q(e.y, qy), q(e.z, qz)};
-        if (points.empty() || !std::equal(from, from + dims, last)) {
-            if (!points.empty()) link(0, kJump);
-            points.insert(points.end(), from, from + dims);
-        }
-        link(q(s.width, widthScale), static_cast<std::uint16_t>(s.color % paletteSize));
-        points.insert(points.end(), to, to + dims);
-        std::copy(to, to + 3, last);
-        ink += inkLength(s, scene.baseWidth);
-    }
-
-    std::vector<std::uint32_t> palette;
-    for (std::size_t k = 0; k < paletteSize; ++k)
-        palette.push_back(rgbaBytes(scene.colorOf(static_cast<std::uint16_t>(k))));
-
-    std::vector<float> triangles;
-    std::vector<std::uint32_t> triangleColors;
-    auto addOutline = [&](const std::vector<Vec3>& outline, const Rgb& color) {
-        const std::vector<std::uint32_t> index = triangulatePolygon(outline);
-        for (std::size_t i = 0; i + 2 < index.size(); i += 3) {
-            for (int k = 0; k < 3; ++k) {
-                const Vec3& p = outline[index[i + k]];
-                triangles.insert(triangles.end(), {float(p.x), float(p.y), float(p.z)});
-            }
-            triangleColors.push_back(rgbaBytes(color));
-        }
-    };
-    for (std::size_t k = 0; k < scene.polygonCount(); ++k) {
-        const auto poly = scene.polygon(k);
-        addOutline(std::vector<Vec3>(poly.begin(), poly.end()),
-                   scene.colorOf(scene.polygonColor[k]));
-    }
-    for (const Disc& d : scene.discs) addOutline(discOutline(d, 24), scene.colorOf(d.color));
-    for (const Sphere& s : scene.spheres)
-        addOutline(discOutline(Disc{s.centre, {0, 0, 1}, s.radius, s.color}, 24),
-                   scene.colorOf(s.color));
-
-    const std::uint32_t header[6] = {0x334C4647u,
-                                     static_cast<std::uint32_t>(n),
-                                     static_cast<std::uint32_t>(triangleColors.size()),
-                                     scene.is3D ? 1u : 0u,
-                                     static_cast<std::uint32_t>(points.size() / dims),
-                                     static_cast<std::uint32_t>(runs.size())};
-    const float lineWidth = float(defaultLineWidth(ink, n > 0, b, RenderOptions{}));
-    const float extent[9] = {float(origin.x),
-                             float(origin.y),
-                             float(origin.z),
-                             float(origin.x + size.x),
-                             float(origin.y + size.y),
-                             float(origin.z + size.z),
-                             lineWidth,
-                             scene.baseWidth,
-                             maxWidth};
-    const std::uint32_t paletteCount = static_cast<std::uint32_t>(palette.size());
-    std::string out;
-    out.reserve(64 + 4 * palette.size() + 2 * points.size() + 4 + 8 * runs.size() +
-                4 * (triangles.size() + triangleColors.size()));
-    appendRaw(out, header, 6);
-    appendRaw(out, extent, 9);
-    appendRaw(out, &paletteCount, 1);
-    appendRaw(out, palette.data(), palette.size());
-    appendRaw(out, points.data(), points.size());
-    out.append((4 - out.size() % 4) % 4, '\0');
-    for (const Run& r : runs) {
-        appendRaw(out, &r.links, 1);
-        appendRaw(out, &r.width, 1);
-        appendRaw(out, &r.color, 1);
-    }
-    appendRaw(out, triangles.data(), triangles.size());
-    appendRaw(out, triangleColors.data(), triangleColors.size());
-    return out;
+Scene pictureScene(const StudioPicture& picture) {
+    return sceneOf(picture.model, picture.modules);
 }
 
 std::string meshGlb(const StudioPicture& picture, const fs::path& scratch) {
-    Scene scene = picture.scene;
+    Scene scene = pictureScene(picture);
     if (picture.model.view.colorMap.empty()) scene.palette = defaultPalette3D();
     const SurfaceLibrary surfaces =
         surfacesFor(picture.model.view, fs::path(picture.model.lsystem.file).parent_path());

@@ -15,7 +15,9 @@
 #include "graftal/cancellation.hpp"
 #include "graftal/diagnostics.hpp"
 #include "graftal/model.hpp"
+#include "graftal/module_string.hpp"
 #include "graftal/scene.hpp"
+#include "studio/line_buffer.hpp"
 
 namespace graftal::studio {
 
@@ -75,34 +77,39 @@ std::string pictureTag(const std::string& key);
 
 // {ok, diagnostics, defines, derivationLength, name}: never throws for bad text.
 nlohmann::json parseReport(const ModelInput& input);
+// The same from the input's parse result (parseInput), when the caller has it already.
+nlohmann::json parseReport(const ModelInput& input, const ParseResult& result);
 
-// A derived model ready to draw: its scene, or a summarised PNG when over the budget.
+// A derived model ready to draw: its line buffer, or a summarised PNG when over the budget.
+// The derived string is kept, not its scene: the 3D view's mesh interprets it again when
+// asked (pictureScene), while a keystroke costs no Scene of every segment.
 struct StudioPicture {
     Model model;
     int steps = 0;
-    Scene scene;
-    std::string summaryPng;  // non-empty: the scene was too large and is left empty
+    ModuleString modules;  // the string the turtle reads (after the homomorphism)
+    std::uint64_t segments = 0;
+    std::string summaryPng;  // non-empty: the scene was too large; no modules or lines kept
     std::string stringHead;  // the first modules of the derived string
     std::vector<std::string> notes;
-    nlohmann::json stats;  // modules, segments, polygons, bbox, deriveMs, drawMs, is3D
-    std::string lines;     // encodeLines(scene), made once and sent again while unchanged
+    nlohmann::json stats;  // modules, segments, polygons, bbox, deriveMs, drawMs, is3D, encodeMs
+    std::string lines;     // the line buffer, made once and sent again while unchanged
 };
 
-// Parses, derives and interprets. Throws Error (with every parse error), Cancelled when
-// `cancel` is raised or the derivation outlasts the limit.
+// Parses, derives, interprets and encodes the line buffer. Throws Error (with every parse
+// error), Cancelled when `cancel` is raised or the derivation outlasts the limit.
 StudioPicture derivePicture(const ModelInput& input, const StudioLimits& limits,
                             const CancellationToken& cancel, const std::filesystem::path& scratch);
-
-// The scene as the 2D view and the 3D line view read it (docs/studio.md lays it out):
-// a 64-byte header, the palette, then the segments as polylines (each point once: x y, or
-// x y z in a 3D scene, as 16-bit fractions of the bounding box; runs of links with their
-// 16-bit width and palette index, or a jump), and filled triangles (9 floats each) with
-// their RGBA colours.
-std::string encodeLines(const Scene& scene);
+// The same for the model parsed from `input` (parseInput, without errors).
+StudioPicture derivePicture(const ModelInput& input, Model parsed, const StudioLimits& limits,
+                            const CancellationToken& cancel, const std::filesystem::path& scratch);
 
 // The picture's mesh (stems as tubes, polygons, surfaces) as glTF binary: repeated organs
 // instanced (EXT_mesh_gpu_instancing) and the buffers compressed (EXT_meshopt_compression)
 // as far as writeGlb(MeshScene) does so.
+// The scene of a picture that is not summarised: its string interpreted again, smoothed and
+// coloured as the line buffer was.
+Scene pictureScene(const StudioPicture& picture);
+
 std::string meshGlb(const StudioPicture& picture, const std::filesystem::path& scratch);
 
 // A download: its file name and bytes.

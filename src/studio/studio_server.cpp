@@ -72,6 +72,13 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
         .count();
 }
 
+// Milliseconds since 1970, as the page's performance.timeOrigin + performance.now().
+double epochMilliseconds() {
+    return std::chrono::duration<double, std::milli>(
+               std::chrono::system_clock::now().time_since_epoch())
+        .count();
+}
+
 // Counts the derivations the page waits for while it lives; thumbnails wait for none.
 class LiveRequest {
   public:
@@ -222,6 +229,12 @@ struct StudioServer::Impl {
 
     void routes() {
         server.set_payload_max_length(options.limits.bodyBytes);
+        // httplib writes an answer's headers and its body apart. With Nagle's algorithm on,
+        // the body's last piece waits for the headers' ACK, which the browser delays by up
+        // to 40 ms (it has nothing to send back): a third of a keystroke's time budget.
+        // Debian builds httplib as a library, so CPPHTTPLIB_TCP_NODELAY defined here would
+        // not reach the server's constructor: the setting is made at run time.
+        server.set_tcp_nodelay(true);
         // Only this machine's own pages: a page of another site that points a name at
         // 127.0.0.1 (DNS rebinding) names its own host.
         server.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
@@ -302,55 +315,79 @@ struct StudioServer::Impl {
         // a multiple of 4, then the line buffer (encodeLines) or a summarised PNG. A
         // request whose picture key is the session's last one reuses that picture; when the
         // page says it shows it already (`have`: its tag) the answer carries no geometry.
-        server.Post("/api/derive",
-                    guarded([this](const httplib::Request& req, httplib::Response& res) {
-                        const auto received = std::chrono::steady_clock::now();
-                        const json body = parseBody(req);
-                        const ModelInput input = modelInput(body);
-                        const std::string session = sessionOf(body);
-                        const std::string key = pictureKey(input);
-                        const std::string tag = pictureTag(key);
-                        const CancellationToken token = sessions.begin(session);
-                        std::shared_ptr<const StudioPicture> picture = sessions.kept(session, key);
-                        const bool reused = picture != nullptr;
-                        const bool unchanged = reused && body.value("have", "") == tag;
-                        double encodeMs = 0;
-                        if (!picture) {
-                            LiveRequest live(liveRequests);
-                            auto made = std::make_shared<StudioPicture>(
-                                derivePicture(input, options.limits, token, scratch));
-                            const auto encodeStart = std::chrono::steady_clock::now();
-                            if (made->summaryPng.empty()) made->lines = encodeLines(made->scene);
-                            encodeMs = millisecondsSince(encodeStart);
-                            picture = made;
-                            sessions.keep(session, key, picture);
-                        }
-                        const bool summarised = !picture->summaryPng.empty();
-                        json stats = picture->stats;
-                        stats["encodeMs"] = encodeMs;
-                        stats["reused"] = reused;
-                        stats["serverMs"] = millisecondsSince(received);
-                        json meta = {
-                            {"stats", stats},
-                            {"steps", picture->steps},
-                            {"tag", tag},
-                            {"unchanged", unchanged},
-                            {"string", unchanged ? std::string() : picture->stringHead},
-                            {"notes", picture->notes},
-                            {"geometry", unchanged    ? "none"
-                                         : summarised ? "png"
-                                                      : "lines"},
-                            {"meshAvailable", !summarised && picture->scene.segments.size() <=
-                                                                 options.limits.meshSegmentBudget}};
-                        std::string out(4, '\0');
-                        const std::string metaText = meta.dump();
-                        const std::uint32_t length = static_cast<std::uint32_t>(metaText.size());
-                        std::memcpy(out.data(), &length, 4);
-                        out += metaText;
-                        out.append((4 - out.size() % 4) % 4, ' ');
-                        if (!unchanged) out += summarised ? picture->summaryPng : picture->lines;
-                        res.set_content(std::move(out), "application/octet-stream");
-                    }));
+        server.Post(
+            "/api/derive", guarded([this](const httplib::Request& req, httplib::Response& res) {
+                const auto received = std::chrono::steady_clock::now();
+                const double receivedAt = epochMilliseconds();
+                const json body = parseBody(req);
+                const ModelInput input = modelInput(body);
+                const std::string session = sessionOf(body);
+                const std::string key = pictureKey(input);
+                const std::string tag = pictureTag(key);
+                const CancellationToken token = sessions.begin(session);
+                // The parse report comes with the picture (or the errors): one
+                // request a keystroke, one parse of the text.
+                ParseResult parsed = parseInput(input);
+                const json report = parseReport(input, parsed);
+                if (!parsed.ok()) {
+                    sendJson(res,
+                             {{"error", Error(parsed.errors()).messages()},
+                              {"diagnostics", report["diagnostics"]},
+                              {"report", report}},
+                             422);
+                    return;
+                }
+                std::shared_ptr<const StudioPicture> picture = sessions.kept(session, key);
+                const bool reused = picture != nullptr;
+                const bool unchanged = reused && body.value("have", "") == tag;
+                if (!picture) {
+                    LiveRequest live(liveRequests);
+                    try {
+                        picture = std::make_shared<StudioPicture>(derivePicture(
+                            input, std::move(parsed.model), options.limits, token, scratch));
+                    } catch (const Cancelled&) {
+                        throw;
+                    } catch (const Error& e) {  // the turtle's, the limits': with the report
+                        sendJson(res,
+                                 {{"error", e.messages()},
+                                  {"diagnostics", diagnosticsJson(e.diagnostics())},
+                                  {"report", report}},
+                                 422);
+                        return;
+                    }
+                    sessions.keep(session, key, picture);
+                }
+                const bool summarised = !picture->summaryPng.empty();
+                json stats = picture->stats;
+                if (reused) stats["encodeMs"] = 0;
+                stats["reused"] = reused;
+                stats["serverMs"] = millisecondsSince(received);
+                // The page's clock and this one are the machine's: it splits the
+                // time before, in and after the server with these.
+                stats["receivedAt"] = receivedAt;
+                stats["answeredAt"] = epochMilliseconds();
+                json meta = {
+                    {"stats", stats},
+                    {"report", report},
+                    {"steps", picture->steps},
+                    {"tag", tag},
+                    {"unchanged", unchanged},
+                    {"string", unchanged ? std::string() : picture->stringHead},
+                    {"notes", picture->notes},
+                    {"geometry", unchanged    ? "none"
+                                 : summarised ? "png"
+                                              : "lines"},
+                    {"meshAvailable",
+                     !summarised && picture->segments <= options.limits.meshSegmentBudget}};
+                std::string out(4, '\0');
+                const std::string metaText = meta.dump();
+                const std::uint32_t length = static_cast<std::uint32_t>(metaText.size());
+                std::memcpy(out.data(), &length, 4);
+                out += metaText;
+                out.append((4 - out.size() % 4) % 4, ' ');
+                if (!unchanged) out += summarised ? picture->summaryPng : picture->lines;
+                res.set_content(std::move(out), "application/octet-stream");
+            }));
 
         // The 3D view's mesh, from the picture the last derive made (or derived again).
         server.Post("/api/mesh",
@@ -367,7 +404,7 @@ struct StudioServer::Impl {
                                 derivePicture(input, options.limits, token, scratch));
                         }
                         if (!picture->summaryPng.empty() ||
-                            picture->scene.segments.size() > options.limits.meshSegmentBudget) {
+                            picture->segments > options.limits.meshSegmentBudget) {
                             sendError(res, 413,
                                       "over the mesh budget of " +
                                           std::to_string(options.limits.meshSegmentBudget) +

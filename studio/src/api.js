@@ -10,6 +10,7 @@ async function failure(res) {
   error.status = res.status;
   error.diagnostics = body.diagnostics || [];
   error.cancelled = !!body.cancelled;
+  error.report = body.report;
   return error;
 }
 
@@ -48,24 +49,33 @@ export async function parse(model) {
 }
 
 // {meta, lines} or {meta, png}; only {meta} when meta.unchanged (the page has the picture).
+// `times`: when the request left, its headers and its body came, and it was decoded (the
+// page's clock, performance.now()).
 export async function derive(model) {
-  const buffer = await (await post('/api/derive', model)).arrayBuffer();
+  const sent = performance.now();
+  const res = await post('/api/derive', model);
+  const headers = performance.now();
+  const buffer = await res.arrayBuffer();
+  const body = performance.now();
   const length = new DataView(buffer).getUint32(0, true);
   const meta = JSON.parse(new TextDecoder().decode(new Uint8Array(buffer, 4, length)));
   let start = 4 + length;
   start += (4 - (start % 4)) % 4;
   const bytes = buffer.byteLength;
-  if (meta.geometry === 'none') return { meta, bytes };
-  if (meta.geometry === 'png') return { meta, bytes, png: new Blob([buffer.slice(start)], { type: 'image/png' }) };
-  return { meta, bytes, lines: decodeLines(buffer, start) };
+  const result = { meta, bytes, times: { sent, headers, body } };
+  if (meta.geometry === 'png') result.png = new Blob([buffer.slice(start)], { type: 'image/png' });
+  else if (meta.geometry === 'lines') result.lines = decodeLines(buffer, start);
+  result.times.decoded = performance.now();
+  return result;
 }
 
 // The line buffer (docs/studio.md): header (magic, segments, triangles, flags, points,
 // runs; bounds, line width, base width, widest segment; palette size), the RGBA palette,
 // the polylines' points as 16-bit fractions of the bounds (x y, or x y z in 3D), runs of
 // links (count, 16-bit width and palette index; index 0xFFFF a jump), then triangles (9
-// floats) with RGBA bytes. The runs are unpacked here into two end points, a width and a
-// colour per segment, as the views draw them.
+// floats) with RGBA bytes. Views over the buffer, no copies: the 2D view draws the runs as
+// they are; unpackSegments() makes two end points, a width and a colour per segment for
+// the 3D line view.
 export function decodeLines(buffer, start) {
   const head = new Uint32Array(buffer, start, 6);
   if (head[0] !== 0x334c4647) throw new Error('not a graftal line buffer');
@@ -77,11 +87,29 @@ export function decodeLines(buffer, start) {
   const is3D = (head[3] & 1) === 1, dims = is3D ? 3 : 2, stride = 2 * dims;
   const points = new Uint16Array(buffer, at, dims * pointCount); at += 2 * dims * pointCount;
   at += (4 - (at % 4)) % 4;
-  const runs = new DataView(buffer, at, 8 * runCount); at += 8 * runCount;
+  // A run is 8 bytes: links (uint32 at 2r), width and colour (uint16 at 4r + 2, 4r + 3).
+  const runLinks = new Uint32Array(buffer, at, 2 * runCount);
+  const runStyle = new Uint16Array(buffer, at, 4 * runCount); at += 8 * runCount;
+  const triangles = new Float32Array(buffer, at, 9 * t); at += 36 * t;
+  const triangleColors = new Uint8Array(buffer, at, 4 * t);
+  const min = [floats[0], floats[1], floats[2]], max = [floats[3], floats[4], floats[5]];
+  return {
+    segments: n, triangleCount: t, is3D, dims, stride, min, max,
+    // A quantized coordinate q stands for min + q * step.
+    step: [0, 1, 2].map((k) => (max[k] - min[k]) / 65535),
+    lineWidth: floats[6], baseWidth: floats[7], widthStep: floats[8] / 65535,
+    palette, points, runCount, runLinks, runStyle, triangles, triangleColors,
+  };
+}
+
+// The runs unpacked (once) into positions (both ends of each segment), widths and colours.
+export function unpackSegments(l) {
+  if (l.positions) return l;
+  const n = l.segments, dims = l.dims, stride = l.stride, points = l.points;
   const positions = new Uint16Array(stride * n), widths = new Uint16Array(n), colors = new Uint16Array(n);
   let point = 0, k = 0;
-  for (let r = 0; r < runCount; ++r) {
-    const links = runs.getUint32(8 * r, true), width = runs.getUint16(8 * r + 4, true), color = runs.getUint16(8 * r + 6, true);
+  for (let r = 0; r < l.runCount; ++r) {
+    const links = l.runLinks[2 * r], width = l.runStyle[4 * r + 2], color = l.runStyle[4 * r + 3];
     if (color === 0xffff) { point += links; continue; }
     widths.fill(width, k, k + links);
     colors.fill(color, k, k + links);
@@ -91,20 +119,12 @@ export function decodeLines(buffer, start) {
       for (let c = 0; c < stride; ++c) positions[to + c] = points[from + c];
     }
   }
-  const triangles = new Float32Array(buffer, at, 9 * t); at += 36 * t;
-  const triangleColors = new Uint8Array(buffer, at, 4 * t);
-  const min = [floats[0], floats[1], floats[2]], max = [floats[3], floats[4], floats[5]];
-  return {
-    segments: n, triangleCount: t, is3D, stride, min, max,
-    // A quantized coordinate q stands for min + q * step.
-    step: [0, 1, 2].map((k) => (max[k] - min[k]) / 65535),
-    lineWidth: floats[6], baseWidth: floats[7], widthStep: floats[8] / 65535,
-    palette, positions, widths, colors, triangles, triangleColors,
-  };
+  return Object.assign(l, { positions, widths, colors });
 }
 
 // The segments' end points as floats (x y z per point, two points a segment).
 export function segmentPoints(l) {
+  unpackSegments(l);
   const out = new Float32Array(6 * l.segments);
   const p = l.positions, half = l.stride / 2;
   for (let i = 0; i < 2 * l.segments; ++i)

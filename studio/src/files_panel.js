@@ -60,11 +60,18 @@ export function markCurrent(path) {
     row.classList.toggle('current', row.dataset.path === path);
 }
 
-// A saved or reloaded file gets a new thumbnail (the server renders it again).
+// A saved or reloaded file gets a new thumbnail (the server renders it again) once the
+// typing has paused: a thumbnail of a large model costs the server as much as a keystroke's
+// picture, and one made at every save would slow the next keystroke down.
+const refreshTimers = new Map();
 export function refreshThumbnail(path, mtime) {
-  const row = [...document.querySelectorAll('#file-list .file')].find((r) => r.dataset.path === path);
-  const img = row?.querySelector('img');
-  if (!img || !img.dataset.src) return;
-  img.dataset.src = img.dataset.src.replace(/&v=\d+$/, '') + '&v=' + mtime;
-  if (img.dataset.requested && !queue.includes(img)) { queue.push(img); next(); }
+  clearTimeout(refreshTimers.get(path));
+  refreshTimers.set(path, setTimeout(() => {
+    refreshTimers.delete(path);
+    const row = [...document.querySelectorAll('#file-list .file')].find((r) => r.dataset.path === path);
+    const img = row?.querySelector('img');
+    if (!img || !img.dataset.src) return;
+    img.dataset.src = img.dataset.src.replace(/&v=\d+$/, '') + '&v=' + mtime;
+    if (img.dataset.requested && !queue.includes(img)) { queue.push(img); next(); }
+  }, 3000));
 }

@@ -82,19 +82,14 @@ function refresh() {
   const started = performance.now();
   const body = modelBody();
   holdThumbnails(+1);
-  api.parse(body).then((report) => {
-    if (seq !== state.seq) return;
-    if (report.ok || report.diagnostics.length) showDiagnostics(report.diagnostics);
-    state.derivationLength = report.derivationLength;
-    $('view-file').textContent = report.viewFile ? `with ${report.viewFile}` : '';
-    updateStepSlider();
-    state.defines = report.defines;
-    showDefines(report.defines, state, { changed: refresh, writeBack });
-  }).catch(() => {});
+  // One request: the parse report (diagnostics, defines, derivation length) comes with the
+  // picture, or with the errors.
   return api.derive({ ...body, have: state.shownTag }).then(async (result) => {
     if (seq < state.shown) return;
     state.shown = seq;
     const arrived = performance.now();
+    // The panels after the picture: the picture is what the keystroke waits for.
+    setTimeout(() => { if (seq === state.shown) showReport(result.meta.report); }, 0);
     // The same picture as shown (an edit in a comment): nothing to draw.
     if (!result.meta.unchanged) {
       state.last = result;
@@ -103,20 +98,36 @@ function refresh() {
     }
     studio.pictures += 1;
     const done = performance.now();
+    // The server's marks are on the machine's clock, as the page's epoch times are.
+    const t = result.times, s = result.meta.stats, epoch = (ms) => performance.timeOrigin + ms;
     studio.timings.push({
       seq, ms: done - started, fetchMs: arrived - started, drawMs: done - arrived,
-      serverMs: result.meta.stats.serverMs, deriveMs: result.meta.stats.deriveMs, turtleMs: result.meta.stats.drawMs,
-      encodeMs: result.meta.stats.encodeMs, segments: result.meta.stats.segments, bytes: result.bytes,
+      serverMs: s.serverMs, deriveMs: s.deriveMs, turtleMs: s.drawMs,
+      encodeMs: s.encodeMs, segments: s.segments, bytes: result.bytes,
       unchanged: result.meta.unchanged,
+      // Before the request left (the page's own work), on its way in, after the server
+      // answered until the headers came, the body's transfer, its decoding.
+      beforeMs: t.sent - started, toServerMs: s.receivedAt - epoch(t.sent),
+      toPageMs: epoch(t.headers) - s.answeredAt, bodyMs: t.body - t.headers, decodeMs: t.decoded - t.body,
     });
     $('views').classList.remove('stale');
   }).catch((e) => {
     if (e.cancelled || seq !== state.seq) return;
+    if (e.report) showReport(e.report);
     studio.errors += 1;
     $('views').classList.add('stale');
     $('note').textContent = e.message;
     if (e.diagnostics?.length) showDiagnostics(e.diagnostics);
   }).finally(() => holdThumbnails(-1));
+}
+
+function showReport(report) {
+  if (report.ok || report.diagnostics.length) showDiagnostics(report.diagnostics);
+  state.derivationLength = report.derivationLength;
+  $('view-file').textContent = report.viewFile ? `with ${report.viewFile}` : '';
+  updateStepSlider();
+  state.defines = report.defines;
+  showDefines(report.defines, state, { changed: refresh, writeBack });
 }
 
 async function showPicture({ meta, lines, png }) {
@@ -294,6 +305,9 @@ async function watch(path) {
     if (state.path !== path || !r.changed) continue;
     state.mtime = r.mtime;
     const f = await api.readFile(path);
+    // Another file may have been opened meanwhile (leaving this one saved it, which is the
+    // change seen): its text must not be replaced by this one's.
+    if (state.path !== path) return;
     if (f.text === text()) { state.savedText = f.text; continue; }
     if (text() === state.savedText) {
       state.savedText = f.text;

@@ -95,8 +95,7 @@ export class View2D {
     // A width-1 segment is l.lineWidth pixels in an 800-pixel picture; it keeps its
     // model size when zoomed.
     const perWidth = (l.lineWidth / View2D.fitScale(l, 800, 800)) * s;
-    const n = l.segments, p = l.positions, widths = l.widths, colors = l.colors;
-    const stride = l.stride, end = stride / 2;  // where a segment's second point starts
+    const n = l.segments, p = l.points, dims = l.dims;
     // Pixels from quantized coordinates: x = ax * q + bx, y = by - ay * q.
     const ax = s * l.step[0], bx = ox + s * l.min[0];
     const ay = s * l.step[1], by = oy - s * l.min[1];
@@ -104,23 +103,26 @@ export class View2D {
     // Round caps cost the rasteriser; past a few thousand segments nobody sees them.
     ctx.lineCap = n < 20000 ? 'round' : 'butt';
     ctx.lineJoin = 'bevel';
+    // The runs as they come: a path of polylines per width and colour, one lineTo a link.
     const styles = [];
-    let color = -1, width = -1, started = -1;
-    for (let i = 0; i < n; ++i) {
-      if (colors[i] !== color || widths[i] !== width) {
+    let color = -1, width = -1, point = 0;
+    for (let r = 0; r < l.runCount; ++r) {
+      const links = l.runLinks[2 * r], w = l.runStyle[4 * r + 2], c = l.runStyle[4 * r + 3];
+      if (c === 0xffff) {  // the pen moves
+        point += links;
+        if (color !== -1) ctx.moveTo(ax * p[dims * point] + bx, by - ay * p[dims * point + 1]);
+        continue;
+      }
+      if (c !== color || w !== width) {
         if (color !== -1) ctx.stroke();
-        color = colors[i]; width = widths[i];
+        color = c; width = w;
         ctx.strokeStyle = styles[color] ??= rgba(l.palette, color);
         ctx.lineWidth = Math.max(0.5, widthPixels * width);
         ctx.beginPath();
-        started = -1;
+        ctx.moveTo(ax * p[dims * point] + bx, by - ay * p[dims * point + 1]);
       }
-      const k = stride * i;
-      // A segment that starts where the last one ended continues its polyline.
-      if (started !== i || p[k] !== p[k - end] || p[k + 1] !== p[k - end + 1])
-        ctx.moveTo(ax * p[k] + bx, by - ay * p[k + 1]);
-      ctx.lineTo(ax * p[k + end] + bx, by - ay * p[k + end + 1]);
-      started = i + 1;
+      const end = point + links;
+      for (let k = dims * (point + 1); point < end; ++point, k += dims) ctx.lineTo(ax * p[k] + bx, by - ay * p[k + 1]);
     }
     if (color !== -1) ctx.stroke();
   }
