@@ -21,14 +21,12 @@
 #include "graftal/mesh_scene.hpp"
 #include "graftal/music.hpp"
 #include "graftal/output.hpp"
-#include "graftal/parser_target.hpp"
 #include "graftal/pipeline.hpp"
 #include "graftal/polyline_scene.hpp"
 #include "graftal/projection.hpp"
 #include "graftal/streamed_picture.hpp"
 #include "graftal/surface.hpp"
 #include "graftal/turtle.hpp"
-#include "graftal/view_file.hpp"
 #include "lang/source_text.hpp"
 #include "studio/zip_archive.hpp"
 
@@ -168,15 +166,8 @@ ParseResult parseInput(const ModelInput& input) {
     ParseOptions options;
     options.fileName = input.file.string();
     options.defines = input.defines;
-    ParseResult result = parse(input.text, options);
-    if (input.viewFile.empty()) return result;
-    DiagnosticList diagnostics;
-    ModelBuilder builder(diagnostics);
-    builder.model() = std::move(result.model);
-    parseViewFileInto(input.viewText, input.viewFile.string(), builder, diagnostics);
-    result.model = std::move(builder.model());
-    for (const Diagnostic& d : diagnostics.items()) result.diagnostics.push_back(d);
-    return result;
+    if (input.viewFile.empty()) return parse(input.text, options);
+    return parse(input.text, input.viewText, input.viewFile.string(), options);
 }
 
 std::string pictureKey(const ModelInput& input) {
