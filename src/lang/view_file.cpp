@@ -131,6 +131,7 @@ class ViewFileReader {
                 // graftal's, as pfg's, is in percent.
                 if (d && name == "scale factor") *d *= 100;
                 if (d) send(known->setting, *d, value);
+                if (d && name == "initial line width") lineWidthUnit(value);
                 return;
             }
             case Kind::PolygonizationLevel: {
@@ -153,6 +154,12 @@ class ViewFileReader {
             }
             case Kind::Text:
                 send(known->setting, std::string(trim(text.substr(value))), value);
+                if (name == "line style") {
+                    // cpfg: pixel lines, or polygons and cylinders as wide as the world width.
+                    std::string style = lower(trim(text.substr(value)));
+                    send("cpfg line width unit",
+                         std::string(style.starts_with("pixel") ? "pixels" : "model"), value);
+                }
                 return;
             case Kind::Tropism:
             case Kind::Torque:
@@ -223,6 +230,18 @@ class ViewFileReader {
 
     std::optional<Vec3> vector(std::size_t from, const std::string& setting) {
         return vectorAt(from, setting);
+    }
+
+    // cpfg's `initial line width: W [UNIT]`: a word starting with p (`pixels`) keeps the
+    // width in pixels; without one (cpfg then draws polygons) or with another (s: cylinders)
+    // the width is in world units.
+    void lineWidthUnit(std::size_t from) {
+        while (from < text_.size() && isBlank(text_[from])) ++from;
+        from = tokenEnd(from);  // past the number
+        while (from < text_.size() && isBlank(text_[from])) ++from;
+        const bool pixels =
+            from < text_.size() && std::tolower(static_cast<unsigned char>(text_[from])) == 'p';
+        send("cpfg line width unit", std::string(pixels ? "pixels" : "model"), from);
     }
 
     // cpfg's new-style tropism and torque lines: fields "T: x,y,z", "E: e" and for tropisms
