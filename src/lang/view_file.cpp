@@ -24,7 +24,8 @@ enum class Kind {
     Tropism,
     Torque,
     Light,
-    Ignored
+    Ignored,
+    NotCpfg,  // a line cpfg's reader does not know either: warned with what to do instead
 };
 
 struct ViewLine {
@@ -60,7 +61,11 @@ const std::vector<ViewLine>& viewLines() {
         {"box", "the box is recomputed from the geometry", Kind::Ignored},
         {"render mode", "graftal chooses how to draw by the output format", Kind::Ignored},
         {"light", "light", Kind::Light},
-        {"material", "materials are not read from view files yet", Kind::Ignored},
+        {"material",
+         "cpfg's view files have no such line (cpfg reads materials from a .mat file given on "
+         "its command line); graftal reads a model folder's one .mat, or the .l file's "
+         "'material file:'",
+         Kind::NotCpfg},
         {"shade mode", "graftal chooses the shading by the output format", Kind::Ignored},
         {"z buffer", "graftal chooses how to draw by the output format", Kind::Ignored},
         {"cylinder sides", "cylinder sides", Kind::Number},
@@ -121,6 +126,9 @@ class ViewFileReader {
         std::size_t value = colon + 1;
         while (value < text.size() && isBlank(text[value])) ++value;
         switch (known->kind) {
+            case Kind::NotCpfg:
+                diags_.warning(at(first, colon), "'" + name + ":' is ignored: " + known->setting);
+                return;
             case Kind::Ignored:
                 diags_.warning(at(first, colon),
                                "'" + name + ":' is read but not drawn: " + known->setting);
