@@ -295,3 +295,79 @@ TEST(GeneralizedCylinder, PicturesIn2DAnd3DAreNotBlank) {
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_GT(inkedPixels(png3), 200) << "a blank 3D picture";
 }
+
+namespace {
+
+// cpfg's `{(n[, rings])` ... `}(n)` cylinders (cpfg's InitializeSpline and FinishSpline):
+// n = 1 open and 2 closed with the Hermite centre line of @Gc, 3 open and 4 closed with a
+// uniform cubic B-spline one; F and f set a control point where they end, `.` where the
+// turtle is. The square f+f+f+f below has the control points (0,1), (-1,1), (-1,0), (0,0).
+std::string splineModel(int type) {
+    std::string n = std::to_string(type);
+    return "Lsystem: 1\nangle increment: 90\nline width: 1\nderivation length: 0\nAxiom: {(" + n +
+           ",2)f+f+f+f}(" + n + ")\nendlsystem\n";
+}
+
+Scene splineScene(int type) {
+    Model m = parseModel(splineModel(type));
+    return interpret(m, deriveWithQueries(m));
+}
+
+}  // namespace
+
+// The B-spline span of the four points, in 2 steps (`{(3,2)`): from (P0+4P1+P2)/6 =
+// (-5/6, 5/6) heading along P2-P0, through (P0+23P1+23P2+P3)/48 = (-23/24, 1/2) at its
+// middle, to (P1+4P2+P3)/6 = (-5/6, 1/6). Three points make no piece: the first is drawn
+// when the fourth comes.
+TEST(GeneralizedCylinder, AnOpenBSplineCylinderRunsThroughTheSpanOfFourControlPoints) {
+    Scene s = splineScene(3);
+    ASSERT_EQ(s.sweptTubes.size(), 1u);
+    const SweptTube& t = s.sweptTubes[0];
+    ASSERT_EQ(t.segmentCount, 2u);
+    const Segment* c = &s.segments[t.firstSegment];
+    expectNear(c[0].a, {-5.0 / 6, 5.0 / 6, 0}, 1e-12);
+    expectNear(c[0].b, {-23.0 / 24, 0.5, 0}, 1e-12);
+    expectNear(c[1].b, {-5.0 / 6, 1.0 / 6, 0}, 1e-12);
+    expectNear(t.headings[0], {-std::sqrt(0.5), -std::sqrt(0.5), 0}, 1e-12);
+    expectNear(t.headings[2], {std::sqrt(0.5), -std::sqrt(0.5), 0}, 1e-12);
+    EXPECT_EQ(s.segments.size(), 2u);  // f draws nothing of its own
+}
+
+// A closed B-spline goes on through its first three control points at `}(4)`: four spans,
+// a loop, each ending where the next starts.
+TEST(GeneralizedCylinder, AClosedBSplineCylinderIsALoop) {
+    Scene s = splineScene(4);
+    ASSERT_EQ(s.sweptTubes.size(), 4u);
+    for (std::size_t k = 0; k < 4; ++k) {
+        const SweptTube &t = s.sweptTubes[k], &next = s.sweptTubes[(k + 1) % 4];
+        const Segment& last = s.segments[t.firstSegment + t.segmentCount - 1];
+        expectNear(last.b, s.segments[next.firstSegment].a, 1e-12);
+    }
+    expectNear(s.segments[s.sweptTubes[0].firstSegment].a, {-5.0 / 6, 5.0 / 6, 0}, 1e-12);
+}
+
+// Hermite cylinders: `{(1)` draws a piece from each control point to the next; `{(2)`
+// draws one more, from the last back to the first.
+TEST(GeneralizedCylinder, HermiteCylindersOpenAndClosed) {
+    Scene open = splineScene(1), closed = splineScene(2);
+    ASSERT_EQ(open.sweptTubes.size(), 3u);
+    ASSERT_EQ(closed.sweptTubes.size(), 4u);
+    expectNear(open.segments[open.sweptTubes[0].firstSegment].a, {0, 1, 0}, 1e-12);
+    const SweptTube& back = closed.sweptTubes[3];
+    expectNear(closed.segments[back.firstSegment].a, {0, 0, 0}, 1e-12);
+    expectNear(closed.segments[back.firstSegment + back.segmentCount - 1].b, {0, 1, 0}, 1e-12);
+}
+
+// `.` sets a control point, `.(n)` one whose piece has n steps; G moves without setting
+// one. `{(5)` is no cylinder type: cpfg ignores it (nothing is drawn between its points),
+// and `{` without a parameter (or `{(0)`) is still a polygon.
+TEST(GeneralizedCylinder, DotSetsControlPointsAndOtherBracesStayPolygons) {
+    Model m = parseModel(
+        "Lsystem: 1\nangle increment: 90\nderivation length: 0\n"
+        "Axiom: {(1).G+G.(3)}(1) {(5).f.f}(5) {(0).f+f+f}(0) {.f+f+f}\nendlsystem\n");
+    Scene s = interpret(m, deriveWithQueries(m));
+    ASSERT_EQ(s.sweptTubes.size(), 1u);
+    EXPECT_EQ(s.sweptTubes[0].segmentCount, 3u);
+    expectNear(s.segments[s.sweptTubes[0].firstSegment + 2].b, {-1, 1, 0}, 1e-12);
+    EXPECT_EQ(s.polygonCount(), 2u);
+}

@@ -50,9 +50,17 @@ Vec3 carryUp(const Vec3& up, const Vec3& from, const Vec3& to);
 
 // The rings of the piece from a to b in `steps` steps (at least 1): ring 0 is a's, the last
 // b's. b's frame must already be carried from a's (carryUp). Empty when the points coincide
-// (cpfg draws nothing then).
+// (cpfg draws nothing then). The centre line is the Hermite curve above, or, given
+// `bspline` (four control positions of a B-spline centre line, cpfg's `{(3)` and `{(4)`),
+// that uniform cubic B-spline's span, which runs from a to b when a and b are placed by
+// bsplineEnds().
 std::vector<CylinderRing> cylinderRings(const CylinderControlPoint& a,
-                                        const CylinderControlPoint& b, int steps);
+                                        const CylinderControlPoint& b, int steps,
+                                        const std::array<Vec3, 4>* bspline = nullptr);
+
+// The point of the uniform cubic B-spline span of p0..p3 at t in [0, 1], and its slope.
+Vec3 bsplinePoint(const std::array<Vec3, 4>& p, double t);
+Vec3 bsplineSlope(const std::array<Vec3, 4>& p, double t);
 
 // The swept surface of those rings: each ring's cross-section (the two contours blended)
 // placed across the centre line. `first` and `second` are the contour points of a and b

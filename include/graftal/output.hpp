@@ -47,6 +47,10 @@ struct ImageTransform {
 double defaultLineWidth(const Scene& scene, const RenderOptions& o);
 // The same from totals a streamed first pass gathers: `ink` is the sum of inkLength().
 double defaultLineWidth(double ink, bool anySegments, const Bounds& bounds, const RenderOptions& o);
+// The stroke width in pixels of a width-1 segment of `scene` drawn with transform `t`: the
+// transform's scale when the scene's widths are in model units (and no line width is
+// requested), else defaultLineWidth() over the scene's base width.
+double strokePixelsPerWidth(const Scene& scene, const RenderOptions& o, const ImageTransform& t);
 // A segment's length times its width relative to `baseWidth`, in model units.
 double inkLength(const Segment& s, float baseWidth);
 // A stroke width in pixels as the 2D writers draw it: wider than the picture it only covers

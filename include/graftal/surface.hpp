@@ -57,4 +57,9 @@ class SurfaceLibrary {
     std::map<std::string, Surface> surfaces_;
 };
 
+// Takes out of `scene` the placements of surfaces `library` does not hold and returns their
+// names, each once, in the order first placed: cpfg draws nothing for a `~X` whose X no
+// `surface:` line declares (and leaves the turtle where it is).
+std::vector<std::string> removeUnknownSurfaces(Scene& scene, const SurfaceLibrary& library);
+
 }  // namespace graftal

@@ -55,6 +55,11 @@ struct ViewSettings {
     int initialColor = 0;                        // the colour index before any ; or ,
     int colorIncrement = 1;                      // what ; adds and , subtracts
     LineStyle lineStyle = LineStyle::Cylinders;  // how 3D outputs draw segments
+    // Whether 2D line art draws widths in model units, scaled with the picture, rather than
+    // relative to the initial width: cpfg's view file says so with `initial line width: W`
+    // without `pixels` (or `line style: polygon` or `cylinder`), where cpfg draws the lines
+    // as polygons or cylinders `W` wide in the world.
+    bool widthsInModelUnits = false;
     // cpfg's `cylinder sides:`: the corners of a 3D stem's cross-section (the command
     // line's --tube-sides wins when given).
     std::optional<int> tubeSides;

@@ -162,9 +162,10 @@ DeriveRequest deriveRequest(const InputOptions& in) {
         r.progress = [](int step, std::size_t modules) { progressLine.report(step, modules); };
     r.notify = [&in](const Diagnostic& d) {
         endProgressLine();
-        // Notes and warnings about the run, not about a place in the file: "graftal: note:".
+        // Notes and warnings about the run, not about a place in the file: "graftal: note:";
+        // those about a line of the file keep it.
         Diagnostic run = d;
-        run.location = SourceLocation{"graftal", 0, 0};
+        if (run.location.line <= 0) run.location = SourceLocation{"graftal", 0, 0};
         if (!in.quiet) std::cerr << describe(run) << '\n';
     };
     return r;

@@ -38,6 +38,48 @@ CentreTangents centreTangents(const CylinderControlPoint& a, const CylinderContr
     return {a.heading * (d * a.tangentLeaving), b.heading * (d * b.tangentArriving)};
 }
 
+// The B-spline span as a cubic in t: ((c3 t + c2) t + c1) t + c0.
+struct BsplineCubic {
+    Vec3 c0, c1, c2, c3;
+};
+
+BsplineCubic bsplineCubic(const std::array<Vec3, 4>& p) {
+    const double sixth = 1.0 / 6.0;
+    return {(p[0] + p[1] * 4.0 + p[2]) * sixth, (p[2] - p[0]) * 0.5,
+            (p[0] - p[1] * 2.0 + p[2]) * 0.5, (p[3] - p[0] + (p[1] - p[2]) * 3.0) * sixth};
+}
+
+}  // namespace
+
+Vec3 bsplinePoint(const std::array<Vec3, 4>& p, double t) {
+    const BsplineCubic c = bsplineCubic(p);
+    return ((c.c3 * t + c.c2) * t + c.c1) * t + c.c0;
+}
+
+Vec3 bsplineSlope(const std::array<Vec3, 4>& p, double t) {
+    const BsplineCubic c = bsplineCubic(p);
+    return (c.c3 * (3 * t) + c.c2 * 2.0) * t + c.c1;
+}
+
+namespace {
+
+// Where the centre line is at curve parameter t, and which way it runs there.
+struct CentreLine {
+    const CylinderControlPoint& a;
+    const CylinderControlPoint& b;
+    const std::array<Vec3, 4>* bspline;
+    Vec3 leaving, arriving;  // the Hermite tangents
+
+    Vec3 at(double t) const {
+        return bspline ? bsplinePoint(*bspline, t)
+                       : hermite(a.position, leaving, b.position, arriving, t);
+    }
+    Vec3 slope(double t) const {
+        return bspline ? bsplineSlope(*bspline, t)
+                       : hermiteSlope(a.position, leaving, b.position, arriving, t);
+    }
+};
+
 }  // namespace
 
 Vec3 hermiteCentre(const CylinderControlPoint& a, const CylinderControlPoint& b, double t) {
@@ -60,12 +102,14 @@ Vec3 carryUp(const Vec3& up, const Vec3& from, const Vec3& to) {
 }
 
 std::vector<CylinderRing> cylinderRings(const CylinderControlPoint& a,
-                                        const CylinderControlPoint& b, int steps) {
+                                        const CylinderControlPoint& b, int steps,
+                                        const std::array<Vec3, 4>* bspline) {
     std::vector<CylinderRing> rings;
     const double d = length(b.position - a.position);
     if (d < 1e-5) return rings;  // cpfg draws nothing between coinciding points
     steps = std::max(steps, 1);
     const CentreTangents m = centreTangents(a, b);
+    const CentreLine centre{a, b, bspline, m.leaving, m.arriving};
     // The radius is a Hermite curve too, of pairs (curve parameter t, radius) over the
     // ring parameter r; zero tangents mean a straight change (t = r).
     using Pair = std::array<double, 2>;
@@ -86,8 +130,8 @@ std::vector<CylinderRing> cylinderRings(const CylinderControlPoint& a,
         const double r = static_cast<double>(k) / steps;
         const double t = at(r, 0);
         CylinderRing ring;
-        ring.centre = hermite(a.position, m.leaving, b.position, m.arriving, t);
-        Vec3 slope = hermiteSlope(a.position, m.leaving, b.position, m.arriving, t);
+        ring.centre = centre.at(t);
+        Vec3 slope = centre.slope(t);
         ring.heading = length(slope) > 1e-12 ? normalized(slope) : a.heading;
         ring.up = carryUp(a.up, a.heading, ring.heading);
         ring.left = cross(ring.up, ring.heading);

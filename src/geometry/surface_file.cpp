@@ -452,4 +452,21 @@ std::vector<std::string> SurfaceLibrary::names() const {
     return out;
 }
 
+std::vector<std::string> removeUnknownSurfaces(Scene& scene, const SurfaceLibrary& library) {
+    std::vector<std::string> unknown;
+    std::vector<bool> known(scene.surfaceNames.size());
+    for (std::size_t k = 0; k < scene.surfaceNames.size(); ++k)
+        known[k] = library.find(scene.surfaceNames[k]) != nullptr;
+    std::vector<bool> said(scene.surfaceNames.size(), false);
+    std::erase_if(scene.surfaces, [&](const SurfaceInstance& s) {
+        if (s.surface < known.size() && known[s.surface]) return false;
+        if (s.surface < said.size() && !said[s.surface]) {
+            said[s.surface] = true;
+            unknown.push_back(scene.surfaceNames[s.surface]);
+        }
+        return s.surface < known.size();
+    });
+    return unknown;
+}
+
 }  // namespace graftal

@@ -24,7 +24,8 @@ enum class Kind {
     Tropism,
     Torque,
     Light,
-    Ignored
+    Ignored,
+    NotCpfg,  // a line cpfg's reader does not know either: warned with what to do instead
 };
 
 struct ViewLine {
@@ -60,7 +61,11 @@ const std::vector<ViewLine>& viewLines() {
         {"box", "the box is recomputed from the geometry", Kind::Ignored},
         {"render mode", "graftal chooses how to draw by the output format", Kind::Ignored},
         {"light", "light", Kind::Light},
-        {"material", "materials are not read from view files yet", Kind::Ignored},
+        {"material",
+         "cpfg's view files have no such line (cpfg reads materials from a .mat file given on "
+         "its command line); graftal reads a model folder's one .mat, or the .l file's "
+         "'material file:'",
+         Kind::NotCpfg},
         {"shade mode", "graftal chooses the shading by the output format", Kind::Ignored},
         {"z buffer", "graftal chooses how to draw by the output format", Kind::Ignored},
         {"cylinder sides", "cylinder sides", Kind::Number},
@@ -121,6 +126,9 @@ class ViewFileReader {
         std::size_t value = colon + 1;
         while (value < text.size() && isBlank(text[value])) ++value;
         switch (known->kind) {
+            case Kind::NotCpfg:
+                diags_.warning(at(first, colon), "'" + name + ":' is ignored: " + known->setting);
+                return;
             case Kind::Ignored:
                 diags_.warning(at(first, colon),
                                "'" + name + ":' is read but not drawn: " + known->setting);
@@ -131,6 +139,7 @@ class ViewFileReader {
                 // graftal's, as pfg's, is in percent.
                 if (d && name == "scale factor") *d *= 100;
                 if (d) send(known->setting, *d, value);
+                if (d && name == "initial line width") lineWidthUnit(value);
                 return;
             }
             case Kind::PolygonizationLevel: {
@@ -153,6 +162,12 @@ class ViewFileReader {
             }
             case Kind::Text:
                 send(known->setting, std::string(trim(text.substr(value))), value);
+                if (name == "line style") {
+                    // cpfg: pixel lines, or polygons and cylinders as wide as the world width.
+                    std::string style = lower(trim(text.substr(value)));
+                    send("cpfg line width unit",
+                         std::string(style.starts_with("pixel") ? "pixels" : "model"), value);
+                }
                 return;
             case Kind::Tropism:
             case Kind::Torque:
@@ -223,6 +238,18 @@ class ViewFileReader {
 
     std::optional<Vec3> vector(std::size_t from, const std::string& setting) {
         return vectorAt(from, setting);
+    }
+
+    // cpfg's `initial line width: W [UNIT]`: a word starting with p (`pixels`) keeps the
+    // width in pixels; without one (cpfg then draws polygons) or with another (s: cylinders)
+    // the width is in world units.
+    void lineWidthUnit(std::size_t from) {
+        while (from < text_.size() && isBlank(text_[from])) ++from;
+        from = tokenEnd(from);  // past the number
+        while (from < text_.size() && isBlank(text_[from])) ++from;
+        const bool pixels =
+            from < text_.size() && std::tolower(static_cast<unsigned char>(text_[from])) == 'p';
+        send("cpfg line width unit", std::string(pixels ? "pixels" : "model"), from);
     }
 
     // cpfg's new-style tropism and torque lines: fields "T: x,y,z", "E: e" and for tropisms

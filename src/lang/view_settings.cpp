@@ -188,6 +188,12 @@ std::string applyViewSetting(ViewSettings& view, const ViewSetting& setting) {
         if (!text) return "'" + kw + ":' expects a word, not a number";
         return applyWordSetting(view, kw, *text);
     }
+    if (kw == "cpfg line width unit") {  // sent by the view-file reader only
+        if (!text || (*text != "pixels" && *text != "model"))
+            return "the line width unit is 'pixels' or 'model'";
+        view.widthsInModelUnits = *text == "model";
+        return "";
+    }
     if (kw == "projection" || kw == "line style" || kw == "background" || kw == "color map" ||
         kw == "colour map" || kw == "surface" || kw == "material file") {
         if (!text) return "'" + kw + ":' expects a word or a file name, not a number";

@@ -80,9 +80,7 @@ void fillPolygons(cairo_t* cr, const Scene& scene, const RenderOptions& o,
 // curve then gets proper round joins and costs one stroke per kSegmentsPerStroke segments.
 void strokeSegments(cairo_t* cr, const Scene& scene, const RenderOptions& o,
                     const ImageTransform& t) {
-    // Segment widths are relative to the scene's base width in 2D line art.
-    const double lineWidth =
-        defaultLineWidth(scene, o) / (scene.baseWidth > 0 ? scene.baseWidth : 1);
+    const double lineWidth = strokePixelsPerWidth(scene, o, t);
     cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
     cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
     cairo_new_path(cr);

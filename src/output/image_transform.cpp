@@ -86,6 +86,12 @@ double defaultLineWidth(const Scene& scene, const RenderOptions& o) {
     return defaultLineWidth(ink, !scene.segments.empty(), scene.bounds(), o);
 }
 
+double strokePixelsPerWidth(const Scene& scene, const RenderOptions& o, const ImageTransform& t) {
+    if (scene.widthsInModelUnits && !(o.lineWidth > 0)) return t.scale;
+    // Segment widths are relative to the scene's base width in 2D line art.
+    return defaultLineWidth(scene, o) / (scene.baseWidth > 0 ? scene.baseWidth : 1);
+}
+
 double defaultLineWidth(double ink, bool anySegments, const Bounds& bounds,
                         const RenderOptions& o) {
     if (o.lineWidth > 0) return o.lineWidth;

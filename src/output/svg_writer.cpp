@@ -141,9 +141,7 @@ void writePolygons(const Scene& scene, const RenderOptions& o, const ImageTransf
 void writeSegments(const Scene& scene, const RenderOptions& o, const ImageTransform& t,
                    SvgText& svg) {
     std::string& s = svg.text();
-    // Segment widths are relative to the scene's base width in 2D line art.
-    const double lineWidth =
-        defaultLineWidth(scene, o) / (scene.baseWidth > 0 ? scene.baseWidth : 1);
+    const double lineWidth = strokePixelsPerWidth(scene, o, t);
     bool groupOpen = false;
     bool pathOpen = false;     // a <path> element has been started and not closed
     bool subpathOpen = false;  // that path has a subpath ending at `last`

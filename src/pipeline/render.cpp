@@ -193,6 +193,24 @@ std::vector<std::string> glbSettingsGiven(const RenderRequest& request) {
     return given;
 }
 
+void warnAt(RenderResult& result, const RenderRequest& request, SourceLocation where,
+            std::string message) {
+    Diagnostic d{Severity::Warning, std::move(where), std::move(message)};
+    if (request.notify) request.notify(d);
+    result.notes.push_back(std::move(d));
+}
+
+// Where module `name` is first written: the first production whose successor has it, or
+// the file when only the axiom does.
+SourceLocation placedAt(const LSystem& ls, const std::string& name) {
+    const int symbol = ls.symbols.find(name);
+    for (const auto* list : {&ls.productions, &ls.decomposition, &ls.homomorphism})
+        for (const Production& p : *list)
+            for (const SuccessorModule& m : p.successor)
+                if (static_cast<int>(m.symbol) == symbol) return p.location;
+    return SourceLocation{ls.file, 0, 0};
+}
+
 // Settings the route taken does not use are said, not silently dropped.
 void warnIgnored(RenderResult& result, const RenderRequest& request, const Model& model,
                  std::string message, std::vector<std::string> fields) {
@@ -348,6 +366,11 @@ RenderResult render(const Model& model, const RenderRequest& request) {
     if (!model.view.materialFile.empty())
         scene.palette = materialPalette(loadMaterials(folder / model.view.materialFile));
     SurfaceLibrary surfaces = surfacesFor(model.view, folder);
+    // cpfg draws nothing for a `~X` no `surface:` line declares: said, not an error.
+    for (const std::string& name : removeUnknownSurfaces(scene, surfaces))
+        warnAt(result, request, placedAt(model.lsystem, "~" + name),
+               "'~" + name + "' places surface '" + name +
+                   "', which no 'surface:' line declares: nothing is drawn for it (as in cpfg)");
     MeshOptions mo;
     // The view file's `cylinder sides:` unless --tube-sides was given.
     mo.tubeSides = request.tubeSides != RenderRequest{}.tubeSides

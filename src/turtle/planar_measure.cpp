@@ -355,11 +355,13 @@ bool PlanarWalk::slowModule(TurtleOp op, ParamView args) {
             if (!polygons_.empty()) polygons_.back().emplace_back(t.x, t.y);
             return true;
         case TurtleOp::PolygonBegin:
+            // `{(n)` starts a generalized cylinder: the generic turtle draws it.
+            if (!args.empty() && args[0] != 0) return false;
             polygons_.emplace_back();
             polygons_.back().emplace_back(t.x, t.y);
             return true;
         case TurtleOp::PolygonEnd:
-            if (polygons_.empty()) return false;
+            if (polygons_.empty() || (!args.empty() && args[0] != 0)) return false;
             if (polygons_.back().size() >= 3) {
                 for (const auto& [x, y] : polygons_.back()) extend(x, y);
                 ++w.polygons;

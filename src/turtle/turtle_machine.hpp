@@ -375,6 +375,9 @@ class TurtleMachine {
             state_.lastSegment = kNoSegment;  // a move starts a new axis
         }
         if (draw && hasTropism_) applyTropism();
+        // Inside cpfg's `{(n)` cylinders F and f set a control point where they end.
+        if (vertex && cylinders_.movesSetPoints())
+            cylinders_.moved(controlPointHere(), drawPiece());
     }
 
     double lengthArg(std::span<const double> args) const {
@@ -401,7 +404,10 @@ class TurtleMachine {
                 forward(lengthArg(args), false, false);
                 break;
             case TurtleOp::RecordVertex:
-                if (!polygons_.empty()) polygons_.back().push_back(state_.position);
+                if (!polygons_.empty())
+                    polygons_.back().push_back(state_.position);
+                else
+                    cylinders_.dot(args, controlPointHere(), drawPiece());
                 break;
             case TurtleOp::TurnLeft:
                 turn(state_.heading, state_.left, args, turnSign_);
@@ -452,11 +458,21 @@ class TurtleMachine {
                 break;
             case TurtleOp::PolygonBegin:
                 note(state_.position);
+                // `{(n)`, n not 0: cpfg's generalized cylinder (type n from 1 to 4; others
+                // are ignored), not a polygon.
+                if (!args.empty() && args[0] != 0) {
+                    cylinders_.beginSpline(args);
+                    break;
+                }
                 polygons_.emplace_back();
                 polygons_.back().push_back(state_.position);
                 polygonOpenedAt_.push_back(index);
                 break;
             case TurtleOp::PolygonEnd:
+                if (!args.empty() && args[0] != 0) {  // `}(n)` ends a `{(n)` cylinder
+                    cylinders_.finishSpline(drawPiece());
+                    break;
+                }
                 note(state_.position);
                 if (polygons_.empty())
                     throw Error(SourceLocation{ls_.file, 0, 0},
@@ -565,6 +581,11 @@ class TurtleMachine {
     // @Gs, @Gc(n), @Ge(n), @Gt, @Gr: a control point here (and the piece it ends drawn) or
     // the tangents of the next ones.
     void cylinderCommand(Symbol sub, std::span<const double> args) {
+        cylinders_.command(sub, args, controlPointHere(), drawPiece());
+    }
+
+    // A control point at the turtle, with what @G, @# and @! have set.
+    CylinderControlPoint controlPointHere() const {
         CylinderControlPoint here = cylinders_.attributes();
         here.position = state_.position;
         here.heading = state_.heading;
@@ -572,15 +593,18 @@ class TurtleMachine {
         here.up = state_.up;
         here.width = state_.width;
         here.color = state_.color;
-        cylinders_.command(sub, args, here, [&](const GeneralizedCylinderTrack::Piece& piece) {
-            drawCylinderPiece(piece);
-        });
+        return here;
+    }
+
+    auto drawPiece() {
+        return [this](const GeneralizedCylinderTrack::Piece& piece) { drawCylinderPiece(piece); };
     }
 
     // The centre line as segments (what every output draws), and for sinks that keep
     // surfaces the swept cross-sections.
     void drawCylinderPiece(const GeneralizedCylinderTrack::Piece& piece) {
-        const std::vector<CylinderRing> rings = cylinderRings(piece.from, piece.to, piece.steps);
+        const std::vector<CylinderRing> rings = cylinderRings(
+            piece.from, piece.to, piece.steps, piece.bspline ? &*piece.bspline : nullptr);
         if (rings.size() < 2) return;
         std::uint32_t first = kNoSegment, previous = kNoSegment;
         for (std::size_t k = 0; k + 1 < rings.size(); ++k) {
