@@ -129,8 +129,8 @@ TEST(GraphicalFunction, AnUnknownIdOrFileIsAnError) {
 }
 
 TEST(GraphicalFunction, AModelFolderGivesItsFunctionSetAndColourMap) {
-    // cpfg takes a folder's .fset and .map on its command line; a folder given alone uses
-    // its one of each (a view file's function lines win over the folder's set).
+    // cpfg takes a .map on its command line (-m) and a .fset through the view file; a folder
+    // given alone uses its one of each (a view file's function lines win over the set).
     TempDir dir;
     dir.write("m.l",
               "Lsystem: 1\nderivation length: 1\nAxiom: A\nA --> B(func(1,0.25))\nendlsystem\n");

@@ -30,6 +30,12 @@ struct Contour {
 // Throws Error at `fileName`:line:column naming what was expected.
 Contour parseContourFile(std::string_view text, const std::string& fileName, int id = 0);
 
+// Reads a contour set (`.cset`, vlab's contour gallery): `contourgalleryver 1 1`, `items:
+// k`, then k contours in the `cver` layouts above. cpfg itself never reads these (its view
+// file names one `.con` per `contour:` line); lpfg does, giving the contours ids 1 to k in
+// file order, and so does graftal. Throws Error at `fileName`:line:column.
+std::vector<Contour> parseContourSet(std::string_view text, const std::string& fileName);
+
 // The points of a cross-section of radius 1 with `sides` sides: for a closed contour
 // sides + 1 points, the last repeating the first; for an open one sides + 1 points from
 // end to end. cpfg's method: the B-spline (periodic for closed contours, uniform for open

@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "graftal/curve_xyz.hpp"
 #include "graftal/diagnostics.hpp"
 #include "graftal/graphical_function.hpp"
 
@@ -42,6 +43,8 @@ struct EvalContext {
     OutputFiles* files = nullptr;
     // The graphical functions func(id, x) reads (LSystem::functions), id counted from 1.
     const std::vector<GraphicalFunction>* functions = nullptr;
+    // The curves curveX/Y/Z(id, t) and curveGAL(id) read (LSystem::curves), id from 1.
+    const std::vector<CurveXYZ>* curves = nullptr;
 };
 
 class Expression {
@@ -84,7 +87,9 @@ class Expression {
         JumpIfTrue,
         Jump,
         Pop,
-        Func,  // func(id, x): the id-th graphical function of the EvalContext at x
+        Func,         // func(id, x): the id-th graphical function of the EvalContext at x
+        Curve,        // curveX/Y/Z(id, t): coordinate fn (0, 1, 2) of the id-th curve at t
+        CurveLength,  // curveGAL(id): the length of the id-th curve
     };
     struct Instr {
         Op op;

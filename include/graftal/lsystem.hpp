@@ -12,6 +12,7 @@
 #include <string_view>
 #include <vector>
 
+#include "graftal/curve_xyz.hpp"
 #include "graftal/diagnostics.hpp"
 #include "graftal/environment_line.hpp"
 #include "graftal/expression.hpp"
@@ -124,6 +125,9 @@ class LSystem {
     // Graphical functions for func(id, x), id counted from 1: the view file's `function:`
     // lines or its `function set:` (they are not part of the .l text).
     std::vector<GraphicalFunction> functions;
+    // Curves for curveX/Y/Z(id, t) and curveGAL(id), id counted from 1: the view file's
+    // `curve:` lines.
+    std::vector<CurveXYZ> curves;
     std::map<std::string, std::string> defines;
     // State shared by blocks and expressions: slot 0 is Q (the step being performed), 1 is Z
     // (the derivation length); then the globals (assigned in Start:, StartEach:, EndEach:

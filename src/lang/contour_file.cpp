@@ -190,6 +190,25 @@ void readVersioned(ContourReader& in, int version, Contour& c) {
                     ", but the 'points:' line announces " + std::to_string(total));
 }
 
+// `cver MAJOR MINOR` (already read as `first`) and the contour after it.
+void readCver(ContourReader& in, const std::vector<Word>& first, Contour& c) {
+    if (first.size() != 3) in.fail(in.lineNumber(), first[0].column, "expected 'cver MAJOR MINOR'");
+    int version = 100 * in.count(first[1], "the major version", 0) +
+                  in.count(first[2], "the minor version", 0);
+    if (version < 101 || version > 103)
+        in.fail(in.lineNumber(), first[1].column,
+                "contour version " + std::string(first[1].text) + " " + std::string(first[2].text) +
+                    " is not supported (1 1, 1 2 and 1 3 are)");
+    readVersioned(in, version, c);
+}
+
+void checkPointCount(ContourReader& in, const Contour& c) {
+    if (c.controlPoints.size() < (c.closed ? 3u : 4u))
+        in.fail(in.lineNumber(), 1,
+                std::string("a ") + (c.closed ? "closed" : "open") + " contour needs at least " +
+                    (c.closed ? "3" : "4") + " points");
+}
+
 }  // namespace
 
 Contour parseContourFile(std::string_view text, const std::string& fileName, int id) {
@@ -198,27 +217,46 @@ Contour parseContourFile(std::string_view text, const std::string& fileName, int
     c.id = id;
     c.name = fileName;
     const std::vector<Word>& first = in.line("'cver 1 1' or 'POINTS DIMENSION closed|open'");
-    if (first[0].text == "cver") {
-        if (first.size() != 3)
-            in.fail(in.lineNumber(), first[0].column, "expected 'cver MAJOR MINOR'");
-        int version = 100 * in.count(first[1], "the major version", 0) +
-                      in.count(first[2], "the minor version", 0);
-        if (version < 101 || version > 103)
-            in.fail(in.lineNumber(), first[1].column,
-                    "contour version " + std::string(first[1].text) + " " +
-                        std::string(first[2].text) + " is not supported (1 1, 1 2 and 1 3 are)");
-        readVersioned(in, version, c);
-    } else {
+    if (first[0].text == "cver")
+        readCver(in, first, c);
+    else
         readOldLayout(in, first, c);
-    }
-    if (c.controlPoints.size() < (c.closed ? 3u : 4u))
-        in.fail(in.lineNumber(), 1,
-                std::string("a ") + (c.closed ? "closed" : "open") + " contour needs at least " +
-                    (c.closed ? "3" : "4") + " points");
+    checkPointCount(in, c);
     if (!in.atEnd())
         in.fail(in.lineNumber() + 1, in.peek()[0].column,
                 "unexpected '" + std::string(in.peek()[0].text) + "' after the last point");
     return c;
+}
+
+std::vector<Contour> parseContourSet(std::string_view text, const std::string& fileName) {
+    ContourReader in(text, fileName);
+    const std::vector<Word>& head = in.line("'contourgalleryver 1 1'");
+    if (head[0].text != "contourgalleryver" || head.size() != 3 || head[1].text != "1" ||
+        head[2].text != "1")
+        in.fail(in.lineNumber(), head[0].column,
+                "expected 'contourgalleryver 1 1' (a contour set), found '" +
+                    std::string(head[0].text) + "'");
+    const std::vector<Word> items = in.keyed("items:", 1);
+    const int count = in.count(items[0], "the number of contours", 1);
+    std::vector<Contour> out;
+    for (int i = 0; i < count; ++i) {
+        const std::vector<Word>& first = in.line("'cver 1 1' (contour " + std::to_string(i + 1) +
+                                                 " of " + std::to_string(count) + ")");
+        if (first[0].text != "cver")
+            in.fail(in.lineNumber(), first[0].column,
+                    "expected 'cver 1 1' to begin contour " + std::to_string(i + 1) + " of " +
+                        std::to_string(count) + ", found '" + std::string(first[0].text) + "'");
+        Contour c;
+        c.id = i + 1;
+        readCver(in, first, c);
+        checkPointCount(in, c);
+        out.push_back(std::move(c));
+    }
+    if (!in.atEnd())
+        in.fail(in.lineNumber() + 1, in.peek()[0].column,
+                "unexpected '" + std::string(in.peek()[0].text) + "' after the last of the " +
+                    std::to_string(count) + " contours 'items:' announces");
+    return out;
 }
 
 // `contour: ID FILE`: the id @# names the contour by (a whole number; 0 is the circle and

@@ -57,6 +57,8 @@ constexpr std::array kFunctions{
     FunctionInfo{"ran", 1, 0},       FunctionInfo{"nran", 2, 0},
     FunctionInfo{"bran", 2, 0},      FunctionInfo{"biran", 2, 0},
     FunctionInfo{"srand", 1, 0},     FunctionInfo{"func", 2, 0},
+    FunctionInfo{"curveX", 2, 0},    FunctionInfo{"curveY", 2, 1},
+    FunctionInfo{"curveZ", 2, 2},    FunctionInfo{"curveGAL", 1, 0},
 };
 
 }  // namespace
@@ -623,7 +625,11 @@ class ExpressionCompiler {
             return;
         }
         if (name == "tfunc") {
-            fail(start, "tfunc() (functions of time from a timeline file) is not supported");
+            // cpfg has no tfunc: its lexer does not know the name, so `tfunc(` is a syntax
+            // error there. Timeline functions (.tset files) belong to lpfg.
+            fail(start,
+                 "tfunc() is not a cpfg function (timeline functions from .tset files are "
+                 "lpfg's); use func(id, x) with a function of the view file");
             return;
         }
         const FunctionInfo* fn = nullptr;
@@ -654,6 +660,10 @@ class ExpressionCompiler {
         }
         if (name == "func") {
             emit(Expression::Op::Func);
+            expr_.usesFunctions_ = true;
+        } else if (name.starts_with("curve")) {
+            emit(name == "curveGAL" ? Expression::Op::CurveLength : Expression::Op::Curve, 0,
+                 fn->id);
             expr_.usesFunctions_ = true;
         } else if (name == "ran") {
             emit(Expression::Op::Ran);
@@ -704,6 +714,7 @@ class ExpressionCompiler {
                 case Expression::Op::Call1:
                 case Expression::Op::Ran:
                 case Expression::Op::Srand:
+                case Expression::Op::CurveLength:
                 case Expression::Op::Jump:
                     break;
                 case Expression::Op::JumpIfFalse:
@@ -1064,6 +1075,30 @@ double Expression::run(std::span<const double> slots, const EvalContext* ctx) co
                                                "('function:' or 'function set:')")
                                  : "there are " + std::to_string(count) + ", counted from 1"));
                 st[sp] = (*ctx->functions)[static_cast<std::size_t>(id) - 1].value(x);
+                break;
+            }
+            case Op::Curve:
+            case Op::CurveLength: {
+                const bool length = in.op == Op::CurveLength;
+                double id = length ? st[sp] : st[sp - 1];
+                std::size_t count = ctx && ctx->curves ? ctx->curves->size() : 0;
+                static constexpr const char* kNames[] = {"curveX", "curveY", "curveZ"};
+                if (!(id >= 1 && id < static_cast<double>(count) + 1))
+                    throw Error(
+                        location_,
+                        "'" + text_ + "': " + (length ? "curveGAL" : kNames[in.fn % 3]) + "(" +
+                            formatNumber(id) + (length ? "" : ", t") + ") names no curve: " +
+                            (count == 0
+                                 ? std::string("the view file names none ('curve:')")
+                                 : "there are " + std::to_string(count) + ", counted from 1"));
+                const CurveXYZ& c = (*ctx->curves)[static_cast<std::size_t>(id) - 1];
+                if (length) {
+                    st[sp] = c.length();
+                } else {
+                    Vec3 p = c.atLength(st[sp]);
+                    --sp;
+                    st[sp] = in.fn == 0 ? p.x : in.fn == 1 ? p.y : p.z;
+                }
                 break;
             }
             case Op::Load:

@@ -247,8 +247,21 @@ std::vector<GraphicalFunction> parseFunctionSet(std::string_view text,
     int items = countOf(in, "items:", 0);
     std::vector<GraphicalFunction> out;
     for (int i = 0; i < items; ++i) {
-        std::string_view head = in.next("'fver 1 1'");
-        if (!startsWith(head, "fver")) in.fail("expected 'fver 1 1' (a function of the set)", 1);
+        // cpfg reads each item as it reads a .func file: `fver 1 1`, or the old `range:`
+        // layout (whose functions are not sampled).
+        std::string_view head = in.next("'fver 1 1' or 'range: lo hi'");
+        if (startsWith(head, "range:")) {
+            out.push_back(readOldFormat(in, "function " + std::to_string(i + 1), 0));
+            continue;
+        }
+        if (!startsWith(head, "fver"))
+            in.fail("expected 'fver 1 1' or 'range: lo hi' (function " + std::to_string(i + 1) +
+                        " of the set's " + std::to_string(items) + ")",
+                    1);
+        std::vector<double> version = in.numbers(head.substr(head.find("fver") + 4), 2);
+        if (version[0] != 1 || version[1] != 1)
+            in.fail("function format version " + std::string(head) + " is not supported (1 1 is)",
+                    1);
         out.push_back(readVersion101(in));
     }
     return out;

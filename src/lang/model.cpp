@@ -129,7 +129,9 @@ std::vector<std::filesystem::path> filesEndingWith(const std::filesystem::path& 
 
 // What cpfg is given beside the .l and .v on its command line, found in a model folder:
 // its one colour map (.map) and its one material file (.mat), unless the model names one,
-// and its one function set (.fset), unless the view file names functions.
+// its one function set (.fset), unless the view file names functions, and its one contour
+// set (.cset, ids 1, 2, ... in file order, as lpfg numbers them), unless the view file
+// names contours.
 namespace {
 
 void addFolderFiles(const std::filesystem::path& folder, ParseResult& result) {
@@ -140,6 +142,16 @@ void addFolderFiles(const std::filesystem::path& folder, ParseResult& result) {
     auto materials = filesEndingWith(folder, ".mat");
     if (model.view.materialFile.empty() && materials.size() == 1)
         model.view.materialFile = materials[0].filename().string();
+    auto contourSets = filesEndingWith(folder, ".cset");
+    std::string contourText;
+    if (model.view.contours.empty() && contourSets.size() == 1 &&
+        readWholeFile(contourSets[0], contourText)) {
+        try {
+            model.view.contours = parseContourSet(contourText, contourSets[0].string());
+        } catch (const Error& e) {
+            for (const auto& d : e.diagnostics()) result.diagnostics.push_back(d);
+        }
+    }
     auto sets = filesEndingWith(folder, ".fset");
     if (sets.size() != 1 || !model.lsystem.functions.empty()) return;
     std::string text;

@@ -9,6 +9,7 @@
 #include <variant>
 
 #include "contour_setting.hpp"
+#include "curve_setting.hpp"
 #include "graftal/file_reading.hpp"
 #include "graftal/parser_target.hpp"
 
@@ -133,6 +134,10 @@ void ModelBuilder::environmentLine(EnvironmentLine line) {
 void ModelBuilder::viewSetting(const ViewSetting& setting) {
     if (setting.name == "function" || setting.name == "function set") {
         loadFunctions(setting);
+        return;
+    }
+    if (setting.name == "curve") {
+        loadCurveSetting(model_.lsystem, setting, diags_);
         return;
     }
     if (setting.name == "contour") {

@@ -81,6 +81,7 @@ const std::vector<ViewLine>& viewLines() {
         {"line style", "line style", Kind::Text},
         {"function", "function", Kind::Text},
         {"function set", "function set", Kind::Text},
+        {"curve", "curve", Kind::Text},
         {"contour sides", "contour sides", Kind::Number},
         {"contour", "contour", Kind::Text},
         {"twist of cylinders", "generalized cylinders are drawn without twist", Kind::Ignored},

@@ -77,6 +77,7 @@ Derivation::Derivation(LSystem lsystem, DerivationOptions options)
             ctx.print = &options_.print;
             ctx.files = files_.get();
             ctx.functions = &lsystem_.functions;
+            ctx.curves = &lsystem_.curves;
             current_->setParam(starts[a.module] + a.param, a.value.evaluate({}, &ctx));
         }
     }
