@@ -236,15 +236,16 @@ inline void parseSurfaceFile(std::string_view text) {
 // ---- view and data files ------------------------------------------------------------
 
 // The files a cpfg model names besides its .l: the view file (.v) read with a small fixed
-// L-system and then drawn, and the contour (.con), function (.func, .fset), material (.mat)
-// and colour map (.map) readers. The first byte picks the reader; the rest is its input.
+// L-system and then drawn, and the contour (.con, .cset), function (.func, .fset), curve,
+// material (.mat) and colour map (.map) readers. The first byte picks the reader (modulo 8,
+// so the digits 0 to 7 in a seed); the rest is its input.
 // The view is named inside an empty scratch folder, so relative file names find nothing.
 inline void readDataFile(const std::uint8_t* data, std::size_t size) {
     if (size == 0) return;
     const std::string_view text = asText(data + 1, size - 1);
     const std::span<const std::uint8_t> bytes(data + 1, size - 1);
     try {
-        switch (data[0] % 6) {
+        switch (data[0] % 8) {
             case 0: {
                 static const std::string folder = [] {
                     auto f = std::filesystem::temp_directory_path() /
@@ -296,8 +297,20 @@ inline void readDataFile(const std::uint8_t* data, std::size_t size) {
             case 4:
                 (void)graftal::materialPalette(graftal::parseMaterials(bytes, "fuzz.mat"));
                 return;
-            default:
+            case 5:
                 (void)graftal::parseColorMap(bytes, "fuzz.map");
+                return;
+            case 6: {
+                graftal::CurveXYZ curve = graftal::parseCurveFile(text, "fuzz.crv", 20);
+                for (double t : {0.0, 0.3, 1.0}) {
+                    (void)curve.atLength(t);
+                    (void)curve.atParameter(t);
+                }
+                return;
+            }
+            default:
+                for (const graftal::Contour& c : graftal::parseContourSet(text, "fuzz.cset"))
+                    (void)graftal::contourPoints(c, 6);
                 return;
         }
     } catch (const graftal::Error& e) {

@@ -8,6 +8,7 @@
 #include "graftal/cancellation.hpp"
 #include "graftal/color_map.hpp"
 #include "graftal/contour.hpp"
+#include "graftal/curve_xyz.hpp"
 #include "graftal/derivation.hpp"
 #include "graftal/derivation_diagram.hpp"
 #include "graftal/diagnostics.hpp"

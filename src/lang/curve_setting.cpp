@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "graftal/curve_xyz.hpp"
+#include "graftal/file_reading.hpp"
 
 namespace graftal {
 
@@ -40,15 +41,14 @@ void loadCurveSetting(LSystem& lsystem, const ViewSetting& setting, DiagnosticLi
     std::filesystem::path path(file);
     if (path.is_relative())
         path = std::filesystem::path(setting.location.file).parent_path() / path;
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-        diagnostics.error(setting.location, "cannot open the curve file '" + path.string() + "'");
+    std::string problem;
+    const std::optional<std::string> bytes = readUserFile(path, problem);
+    if (!bytes) {
+        diagnostics.error(setting.location, "the curve file '" + path.string() + "' " + problem);
         return;
     }
-    std::ostringstream bytes;
-    bytes << in.rdbuf();
     try {
-        lsystem.curves.push_back(parseCurveFile(bytes.str(), path.string(), samples));
+        lsystem.curves.push_back(parseCurveFile(*bytes, path.string(), samples));
     } catch (const Error& e) {
         for (const auto& d : e.diagnostics()) diagnostics.add(d);
     }

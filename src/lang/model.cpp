@@ -143,19 +143,22 @@ void addFolderFiles(const std::filesystem::path& folder, ParseResult& result) {
     if (model.view.materialFile.empty() && materials.size() == 1)
         model.view.materialFile = materials[0].filename().string();
     auto contourSets = filesEndingWith(folder, ".cset");
-    std::string contourText;
-    if (model.view.contours.empty() && contourSets.size() == 1 &&
-        readWholeFile(contourSets[0], contourText)) {
-        try {
-            model.view.contours = parseContourSet(contourText, contourSets[0].string());
-        } catch (const Error& e) {
-            for (const auto& d : e.diagnostics()) result.diagnostics.push_back(d);
-        }
+    std::string contourText, problem;
+    if (model.view.contours.empty() && contourSets.size() == 1) {
+        if (!readWholeFile(contourSets[0], contourText, problem))
+            result.diagnostics.push_back({Severity::Error,
+                                          SourceLocation{contourSets[0].string(), 0, 0},
+                                          "the contour set " + problem});
+        else
+            try {
+                model.view.contours = parseContourSet(contourText, contourSets[0].string());
+            } catch (const Error& e) {
+                for (const auto& d : e.diagnostics()) result.diagnostics.push_back(d);
+            }
     }
     auto sets = filesEndingWith(folder, ".fset");
     if (sets.size() != 1 || !model.lsystem.functions.empty()) return;
     std::string text;
-    std::string problem;
     if (!readWholeFile(sets[0], text, problem)) {
         result.diagnostics.push_back({Severity::Error, SourceLocation{sets[0].string(), 0, 0},
                                       "the function set " + problem});
