@@ -3,6 +3,7 @@
 
 Usage: scripts/cpfg_string_survey.py CPFG MODELS_DIR [--graftal build/graftal]
                                      [--markdown OUT.md] [--timeout SECONDS] [--seeds N]
+       scripts/cpfg_string_survey.py --self-test   (checks the comparison rule alone)
 
 CPFG is the user's own cpfg binary (graftal ships none: cpfg is GPL-3 and is not part of
 graftal).  It is run in batch mode exactly as the cpfg oracle pack was made:
@@ -210,7 +211,31 @@ def table(rows, cpfg):
     return '\n'.join(lines)
 
 
+def self_test():
+    """The comparison rule on strings whose answer is known; exits non-zero on a wrong one."""
+    cases = [
+        ('F(1)+F(2)', 'F(1)\n+F(2)', ''),  # line breaks do not count
+        ('F(6.12323e-17)', 'F(0)', ''),  # absolute floor
+        ('F(100000)', 'F(100004)', ''),  # within 1e-4 relative
+        ('F(100000)', 'F(100020)', 'module 1: cpfg F(100000), graftal F(100020)'),
+        ('F(1,2)', 'F(1)', 'module 1: cpfg F(1,2), graftal F(1)'),
+        ('AB', 'AC', 'module 2: cpfg B, graftal C'),
+        ('A', 'A(0)', 'module 1: cpfg A, graftal A(0)'),
+        ('AB', 'A', '2 modules from cpfg, 1 from graftal (first extra at module 2: cpfg has B)'),
+    ]
+    wrong = 0
+    for expected, actual, answer in cases:
+        got = first_difference(modules(expected), modules(actual))
+        if got != answer:
+            wrong += 1
+            print('self-test: %r against %r gave %r, expected %r' % (expected, actual, got, answer))
+    print('%d passed, %d failed' % (len(cases) - wrong, wrong))
+    sys.exit(1 if wrong else 0)
+
+
 def main():
+    if sys.argv[1:] == ['--self-test']:
+        self_test()
     parser = argparse.ArgumentParser(description=__doc__.split('\n')[0])
     parser.add_argument('cpfg', help="the user's own cpfg binary")
     parser.add_argument('models')
