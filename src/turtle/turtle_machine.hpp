@@ -239,7 +239,7 @@ class TurtleMachine {
                 return;
             }
         }
-        if (op != TurtleOp::None) apply(op, args, index, s);
+        if (op != TurtleOp::None) apply(op, args, index);
     }
 
     // The last module was @, @G or ~, which the next module completes: a walk that jumps
@@ -391,7 +391,7 @@ class TurtleMachine {
         return args.empty() ? view_.stepLength : args[0];
     }
 
-    void apply(TurtleOp op, std::span<const double> args, std::size_t index, Symbol symbol) {
+    void apply(TurtleOp op, std::span<const double> args, std::size_t index) {
         switch (op) {
             case TurtleOp::None:
                 break;
