@@ -21,7 +21,23 @@ TEST(Decomposition, AppliesRecursivelyAfterEveryStep) {
 TEST(Decomposition, StopsAtTheMaximumDepth) {
     Model ls =
         parseModel("Lsystem: 1\naxiom: A\ndecomposition\nmaximum depth: 3\nA --> aA\nendlsystem\n");
-    EXPECT_EQ(derived(ls.lsystem, 0), "aaaA") << "the axiom is decomposed too";
+    EXPECT_EQ(derived(ls.lsystem, 1), "aaaA");
+}
+
+// cpfg decomposes what a derivation step produces (and the modules it copies), never the
+// axiom as written: with derivation length 0 its string is the axiom, and a ring L-system
+// whose axiom decomposes into ABBB (vlab's m-Ring) gives ABBB after one step, not the
+// rewriting of ABBB.  Both measured with cpfg 6.6 in batch mode (-g -str).
+TEST(Decomposition, LeavesTheAxiomAsWritten) {
+    Model ls =
+        parseModel("Lsystem: 1\naxiom: A\ndecomposition\nmaximum depth: 3\nA --> aA\nendlsystem\n");
+    EXPECT_EQ(derived(ls.lsystem, 0), "A");
+    Model ring = parseModel(
+        "Lsystem: 1\nring lsystem\naxiom: X(4)\nA < B --> A\nA --> B\n"
+        "decomposition\nmaximum depth: 10\nX(n) : n>1 --> X(n-1)B\nX(n) : n==1 --> A\n"
+        "endlsystem\n");
+    EXPECT_EQ(derived(ring.lsystem, 1), "ABBB");
+    EXPECT_EQ(derived(ring.lsystem, 2), "BABB");
 }
 
 TEST(Homomorphism, OnlyChangesWhatTheTurtleSees) {

@@ -66,8 +66,11 @@ class SymbolTable {
   public:
     SymbolTable();
 
-    // Declares a multi-letter name (or returns the existing id).
-    Symbol declare(std::string_view name);
+    // Whether the tokenizer matches a declared name anywhere, or only as a surface name
+    // right after ~ (an undeclared `~leaf`).
+    enum class Matching : std::uint8_t { Anywhere, AfterTildeOnly };
+    // Declares a multi-letter name (or returns the existing id; Anywhere wins).
+    Symbol declare(std::string_view name, Matching matching = Matching::Anywhere);
     // The id of a declared name or single character; -1 when unknown.
     int find(std::string_view name) const;
     const std::string& name(Symbol s) const { return names_[s]; }

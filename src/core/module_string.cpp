@@ -55,18 +55,24 @@ SymbolTable::SymbolTable() {
     for (const char* q : {"?E", "?P", "?H", "?L", "?U"}) declare(q);
 }
 
-Symbol SymbolTable::declare(std::string_view name) {
+Symbol SymbolTable::declare(std::string_view name, Matching matching) {
     if (name.size() == 1 && static_cast<unsigned char>(name[0]) < kFirstNamedSymbol)
         return static_cast<Symbol>(name[0]);
     auto it = ids_.find(std::string(name));
-    if (it != ids_.end()) return it->second;
-    if (names_.size() >= kMaxSymbols)
-        throw Error(SourceLocation{}, "too many module names: at most " +
-                                          std::to_string(kMaxSymbols - kFirstDeclaredSymbol) +
-                                          " multi-letter names per L-system");
-    auto id = static_cast<Symbol>(names_.size());
-    names_.emplace_back(name);
-    ids_.emplace(std::string(name), id);
+    Symbol id;
+    if (it != ids_.end()) {
+        id = it->second;
+        if (std::find(byLength_.begin(), byLength_.end(), id) != byLength_.end()) return id;
+    } else {
+        if (names_.size() >= kMaxSymbols)
+            throw Error(SourceLocation{}, "too many module names: at most " +
+                                              std::to_string(kMaxSymbols - kFirstDeclaredSymbol) +
+                                              " multi-letter names per L-system");
+        id = static_cast<Symbol>(names_.size());
+        names_.emplace_back(name);
+        ids_.emplace(std::string(name), id);
+    }
+    if (matching == Matching::AfterTildeOnly) return id;
     byLength_.push_back(id);
     std::stable_sort(byLength_.begin(), byLength_.end(),
                      [this](Symbol a, Symbol b) { return names_[a].size() > names_[b].size(); });

@@ -100,20 +100,33 @@ bool tokenizeModules(std::string_view text, const SourceLocation& loc, int start
         ModuleToken tok;
         tok.column = startColumn + static_cast<int>(i);
         std::size_t len = 1;
-        if (c == '~' && i + 1 < text.size() &&
-            (std::isalnum(static_cast<unsigned char>(text[i + 1])) || text[i + 1] == '_')) {
+        // cpfg's ~ is a module of its own, followed by the module that names the surface
+        // (`~l(0.5,t)` is `~` and `l(0.5,t)`, which productions rewrite like any other).
+        // graftal's surfaces may have long names: a run of two or more letters, digits
+        // or _ after ~ is one module (`~leaf` is `~` and `leaf`), whether declared or not.
+        // Such a name is matched in the text only after ~ unless `module` declares it.
+        if (c == '~') {
+            tok.symbol = static_cast<Symbol>('~');
+            out.push_back(std::move(tok));
             std::size_t e = i + 1;
             while (e < text.size() &&
                    (std::isalnum(static_cast<unsigned char>(text[e])) || text[e] == '_'))
                 ++e;
-            if (symbols.size() >= kMaxSymbols && symbols.find(text.substr(i, e - i)) < 0) {
+            if (e - i <= 2) {  // nothing or one character: read as any module
+                ++i;
+                continue;
+            }
+            std::string_view name = text.substr(i + 1, e - i - 1);
+            if (symbols.size() >= kMaxSymbols && symbols.find(name) < 0) {
                 diags.error(where(i), "too many module names: at most " +
                                           std::to_string(kMaxSymbols - kFirstDeclaredSymbol) +
                                           " multi-letter names (and ~surfaces) per file");
                 return false;
             }
-            tok.symbol = symbols.declare(text.substr(i, e - i));
-            out.push_back(std::move(tok));
+            ModuleToken surface;
+            surface.column = startColumn + static_cast<int>(i + 1);
+            surface.symbol = symbols.declare(name, SymbolTable::Matching::AfterTildeOnly);
+            out.push_back(std::move(surface));
             i = e;
             continue;
         }

@@ -24,8 +24,9 @@ struct ModuleToken {
 };
 
 // `startColumn` is the column of text[0] on line `loc.line`. Returns false and reports
-// to `diags` when the text is malformed. `~name` (a predefined surface, as in cpfg) is one
-// module and is declared in `symbols` on first use.
+// to `diags` when the text is malformed. `~` is a module of its own, as in cpfg; a
+// surface name of two or more characters after it is one module, declared in `symbols`
+// on first use (matched only after ~ unless `module` declares it).
 bool tokenizeModules(std::string_view text, const SourceLocation& loc, int startColumn,
                      SymbolTable& symbols, std::vector<ModuleToken>& out, DiagnosticList& diags);
 

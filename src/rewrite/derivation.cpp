@@ -91,7 +91,9 @@ Derivation::Derivation(LSystem lsystem, DerivationOptions options)
         ownedEnvironment_ = makeEnvironment(lsystem_);
         environment_ = ownedEnvironment_.get();
     }
-    afterStep(0);
+    // cpfg decomposes what each step produces, never the axiom as written; the queries of
+    // the axiom are answered all the same.
+    answerQueries(0);
 }
 
 Derivation::~Derivation() = default;

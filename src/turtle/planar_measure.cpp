@@ -25,7 +25,7 @@ bool leavesPlane(TurtleOp op) {
         case TurtleOp::RollRight:
         case TurtleOp::RollToVertical:
         case TurtleOp::AtPrefix:  // @R, @M, @c, @O may leave it; the generic turtle knows
-        case TurtleOp::Surface:
+        case TurtleOp::SurfacePrefix:
             return true;
         default:
             return false;
@@ -389,7 +389,7 @@ bool PlanarWalk::slowModule(TurtleOp op, ParamView args) {
         case TurtleOp::RollRight:
         case TurtleOp::RollToVertical:
         case TurtleOp::AtPrefix:
-        case TurtleOp::Surface:
+        case TurtleOp::SurfacePrefix:
             return false;
     }
     return true;

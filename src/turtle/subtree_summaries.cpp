@@ -217,7 +217,8 @@ void walk(const SubtreeSummaries& sums, Machine& machine, JumpOver&& jumpOver) {
             continue;
         }
         const SubtreeMotion& m = sums.motion(s, level);
-        if (m.summarised && jumpOver(m)) continue;
+        // After @ or ~ the module that follows is the prefix's: never jumped over.
+        if (m.summarised && !machine.prefixPending() && jumpOver(m)) continue;
         std::span<const Symbol> next = sums.successor(s, level);
         levels.push_back({next.data(), next.data() + next.size()});
     }

@@ -52,8 +52,8 @@ enum class TurtleOp : std::uint8_t {
     WidthUp,
     ColorNext,
     ColorPrevious,
-    Surface,
-    Elasticity,  // cpfg's _: adds the elasticity increment, or _(e) sets the elasticity
+    SurfacePrefix,  // ~: the next module names the surface (~l(0.5), ~leaf(2))
+    Elasticity,     // cpfg's _: adds the elasticity increment, or _(e) sets the elasticity
 };
 
 inline constexpr double kPi = 3.14159265358979323846;
@@ -91,6 +91,8 @@ inline TurtleOp opFor(Symbol s) {
         // (pfg data files keep the book's $, see opTable()).
         case '@':
             return TurtleOp::AtPrefix;
+        case '~':
+            return TurtleOp::SurfacePrefix;
         case '[':
             return TurtleOp::Push;
         case ']':
@@ -119,14 +121,9 @@ inline TurtleOp opFor(Symbol s) {
 // (this machine, the planar walk of planar_measure.cpp and the subtree summaries) all
 // switch on these operations; the planar walk keeps a switch of its own rather than
 // calling into the machine, because a call in its loop would make it slower (see there).
-// Characters get opFor(), declared ~names are surfaces, and in a pfg data file the book's
-// $ rolls until L is horizontal.
+// Characters get opFor() and in a pfg data file the book's $ rolls until L is horizontal.
 inline TurtleOp opOf(const LSystem& ls, Symbol s) {
     if (s >= ls.symbols.size()) return TurtleOp::None;
-    if (s >= kFirstDeclaredSymbol) {
-        const std::string& name = ls.symbols.name(s);
-        if (name.size() > 1 && name[0] == '~') return TurtleOp::Surface;
-    }
     if (s == '$' && ls.legacyPfg) return TurtleOp::RollToVertical;
     return opFor(s);
 }
@@ -233,8 +230,21 @@ class TurtleMachine {
             return;
         }
         TurtleOp op = ops_[s];
-        if (op != TurtleOp::None) apply(op, args, index, s);
+        if (surfacePending_) {  // the module after ~ names the surface
+            surfacePending_ = false;
+            // cpfg takes any module after ~ as a surface's name; a turtle command there
+            // (a lone ~ before [ or /) still does what it says, and ~ alone draws nothing.
+            if (op == TurtleOp::None) {
+                placeSurface(s, args);
+                return;
+            }
+        }
+        if (op != TurtleOp::None) apply(op, args, index);
     }
+
+    // The last module was @, @G or ~, which the next module completes: a walk that jumps
+    // over subtrees must hand it that module (subtree_summaries.cpp).
+    bool prefixPending() const { return atPending_ || cylinderPending_ || surfacePending_; }
 
     // Collects cpfg's view volume (the `box` of its output) from here on; see viewVolume().
     void trackViewVolume() { tracking_ = true; }
@@ -384,7 +394,7 @@ class TurtleMachine {
         return args.empty() ? view_.stepLength : args[0];
     }
 
-    void apply(TurtleOp op, std::span<const double> args, std::size_t index, Symbol symbol) {
+    void apply(TurtleOp op, std::span<const double> args, std::size_t index) {
         switch (op) {
             case TurtleOp::None:
                 break;
@@ -504,9 +514,9 @@ class TurtleMachine {
                 else
                     state_.color = colorIndex(state_.color - view_.colorIncrement);
                 break;
-            case TurtleOp::Surface:
+            case TurtleOp::SurfacePrefix:
                 note(state_.position);
-                placeSurface(symbol, args);
+                surfacePending_ = true;
                 break;
         }
     }
@@ -681,7 +691,7 @@ class TurtleMachine {
         s.up = state_.up;
         s.scale = args.empty() ? 1.0 : args[0];
         s.color = state_.color;
-        sink_.surface(ls_.symbols.name(symbol).substr(1), s);
+        sink_.surface(ls_.symbols.name(symbol), s);
     }
 
     const LSystem& ls_;
@@ -700,6 +710,7 @@ class TurtleMachine {
     bool is3D_ = false;
     bool atPending_ = false;        // the last module was an @
     bool cylinderPending_ = false;  // the last modules were @G
+    bool surfacePending_ = false;   // the last module was a ~
     GeneralizedCylinderTrack cylinders_;
     std::uint64_t rotations_ = 0;
     std::array<AngleMemo, 4> angles_{};
