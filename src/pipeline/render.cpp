@@ -200,14 +200,18 @@ void warnAt(RenderResult& result, const RenderRequest& request, SourceLocation w
     result.notes.push_back(std::move(d));
 }
 
-// Where module `name` is first written: the first production whose successor has it, or
-// the file when only the axiom does.
+// Where surface `name` is first placed (`~` then `name`): the first production whose successor
+// places it, or the file when only the axiom does.
 SourceLocation placedAt(const LSystem& ls, const std::string& name) {
+    // `~` is a module of its own (as in cpfg): the surface is the module after it.
+    const int tilde = ls.symbols.find("~");
     const int symbol = ls.symbols.find(name);
     for (const auto* list : {&ls.productions, &ls.decomposition, &ls.homomorphism})
         for (const Production& p : *list)
-            for (const SuccessorModule& m : p.successor)
-                if (static_cast<int>(m.symbol) == symbol) return p.location;
+            for (std::size_t i = 0; i + 1 < p.successor.size(); ++i)
+                if (static_cast<int>(p.successor[i].symbol) == tilde &&
+                    static_cast<int>(p.successor[i + 1].symbol) == symbol)
+                    return p.location;
     return SourceLocation{ls.file, 0, 0};
 }
 
@@ -368,7 +372,7 @@ RenderResult render(const Model& model, const RenderRequest& request) {
     SurfaceLibrary surfaces = surfacesFor(model.view, folder);
     // cpfg draws nothing for a `~X` no `surface:` line declares: said, not an error.
     for (const std::string& name : removeUnknownSurfaces(scene, surfaces))
-        warnAt(result, request, placedAt(model.lsystem, "~" + name),
+        warnAt(result, request, placedAt(model.lsystem, name),
                "'~" + name + "' places surface '" + name +
                    "', which no 'surface:' line declares: nothing is drawn for it (as in cpfg)");
     MeshOptions mo;
