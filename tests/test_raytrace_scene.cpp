@@ -279,6 +279,33 @@ TEST(RaytraceFraming, TheSceneFillsTheFrame) {
     expectFills(wide, ortho, "a row of leaves, orthographic");
 }
 
+TEST(RaytraceFraming, ACpfgParallelViewTakesOnlyItsDirectionAndFitsTheScene) {
+    // cpfg fits its parallel view volume to the model: a view file's `viewpoint: 0,0,1` and
+    // `view reference point: 0,0,0` say only "look along -z". Taken as a camera 1 unit from
+    // the origin, the window would be under a unit across and the row of leaves, 8 units
+    // wide, would not fit (vlab's Tropisms model drew a blank picture so).
+    MeshScene wide;
+    wide.mesh.palette = {kGreen};
+    wide.prototypes.push_back(leaf());
+    for (int k = 0; k < 9; ++k)
+        wide.placements.push_back({0, placement(30, 1, {float(k) - 4, 0, 0})});
+    RaytraceOptions o = options(100, 100);
+    o.camera.orthographic = true;
+    o.camera.viewpoint = Vec3{0, 0, 1};
+    o.camera.target = Vec3{0, 0, 0};
+    o.camera.fitWindow = true;
+    expectFills(wide, o, "a row of leaves, cpfg's parallel view");
+    const Box fitted = drawnBox(renderRaytracedPixels(wide, o), o.width, o.height, o.background);
+    // Without the flag (a --viewpoint and --target given on the command line) the camera is
+    // taken as it is: the window, 0.7 units high, shows the middle leaf and nothing else.
+    o.camera.fitWindow = false;
+    const Box b = drawnBox(renderRaytracedPixels(wide, o), o.width, o.height, o.background);
+    EXPECT_GE(fitted.x1 - fitted.x0, 90);
+    EXPECT_TRUE(b.x0 >= b.x1 || std::abs((b.x1 - b.x0) - (fitted.x1 - fitted.x0)) > 10)
+        << "the unfitted window drew " << b.x0 << ".." << b.x1 << ", the fitted one " << fitted.x0
+        << ".." << fitted.x1;
+}
+
 TEST(RaytraceFraming, FramedCameraFillsBetterThanTheBoundingSphere) {
     // A tall thin plant seen from the front: the old sphere left most of the height empty.
     const MeshScene s = curveStem(0.02f);

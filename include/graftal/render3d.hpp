@@ -20,6 +20,11 @@ struct Camera {
     Vec3 up{0, 1, 0};
     double fieldOfView = 40;  // vertical, degrees
     bool orthographic = false;
+    // Orthographic with a viewpoint and a target: only the direction between them counts,
+    // and the window is fitted to the scene, as cpfg fits its parallel view volume to the
+    // model (a cpfg view file's `viewpoint:` is often just outside the origin, which would
+    // otherwise show a window a few units across).
+    bool fitWindow = false;
 };
 
 struct Lighting {

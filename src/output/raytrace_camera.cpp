@@ -140,10 +140,12 @@ PointSource drawnPoints(std::span<const TracedScene> scenes) {
 
 Camera frameCamera(const Camera& c, const PointSource& points, int width, int height) {
     Camera framed = c;
-    if (c.viewpoint && c.target) return framed;
+    const bool directionOnly = c.orthographic && c.fitWindow && c.viewpoint && c.target &&
+                               length(*c.target - *c.viewpoint) > 0;
+    if (c.viewpoint && c.target && !directionOnly) return framed;
     const Bounds box = boundsOf(points);
     const Vec3 centre = box.empty() ? Vec3{} : (box.min + box.max) * 0.5;
-    if (c.viewpoint) {
+    if (c.viewpoint && !directionOnly) {
         framed.target = centre;
         return framed;
     }
@@ -152,7 +154,8 @@ Camera frameCamera(const Camera& c, const PointSource& points, int width, int he
     const double elevation = kFrameElevationDegrees * std::numbers::pi / 180;
     const Vec3 towardsEye =
         frontDirection(worldUp) * std::cos(elevation) + worldUp * std::sin(elevation);
-    const Axes a = axesLookingAlong(-towardsEye, worldUp);
+    const Axes a = directionOnly ? axesLookingAlong(*c.target - *c.viewpoint, worldUp)
+                                 : axesLookingAlong(-towardsEye, worldUp);
     const double aspect = static_cast<double>(width) / height;
     const double ty = kFrameFill * tanHalfVertical(c), tx = ty * aspect;
 
@@ -173,7 +176,7 @@ Camera frameCamera(const Camera& c, const PointSource& points, int width, int he
     const double clearance = 1e-3 * std::max(largestSide(box), 1e-9);
 
     Fit f;
-    if (c.target) {
+    if (c.target && !directionOnly) {
         const Seen t = seen(a, *c.target);
         f = {t.x, t.y, t.z};
         if (c.orthographic) {

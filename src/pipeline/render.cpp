@@ -87,6 +87,7 @@ RaytraceOptions raytraceOptions(const ViewSettings& v, const RenderRequest& requ
     if (auto fov = request.fieldOfView ? request.fieldOfView : v.fieldOfView)
         r.camera.fieldOfView = *fov;
     r.camera.orthographic = v.parallelProjection;
+    r.camera.fitWindow = v.parallelProjection && !request.viewpoint && !request.target;
     if (auto light = request.light ? request.light : v.lightDirection)
         r.lighting.sunDirection = *light;
     r.ground = request.ground;
