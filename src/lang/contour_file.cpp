@@ -7,7 +7,7 @@
 
 #include "contour_setting.hpp"
 #include "graftal/contour.hpp"
-#include "graftal/file_reading.hpp"
+#include "setting_file.hpp"
 
 namespace graftal {
 
@@ -277,15 +277,9 @@ void loadContourSetting(ViewSettings& view, const ViewSetting& setting,
                               (text ? *text : std::string()) + "'");
         return;
     }
-    std::filesystem::path path(file);
-    if (path.is_relative())
-        path = std::filesystem::path(setting.location.file).parent_path() / path;
-    std::string problem;
-    const std::optional<std::string> bytes = readUserFile(path, problem);
-    if (!bytes) {
-        diagnostics.error(setting.location, "the contour file '" + path.string() + "' " + problem);
-        return;
-    }
+    const std::filesystem::path path = settingFilePath(setting, file);
+    const std::optional<std::string> bytes = readSettingFile(setting, path, "contour", diagnostics);
+    if (!bytes) return;
     try {
         Contour contour = parseContourFile(*bytes, path.string(), static_cast<int>(id));
         // A later line with the same id replaces the earlier one.

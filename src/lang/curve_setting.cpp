@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "graftal/curve_xyz.hpp"
-#include "graftal/file_reading.hpp"
+#include "setting_file.hpp"
 
 namespace graftal {
 
@@ -38,15 +38,9 @@ void loadCurveSetting(LSystem& lsystem, const ViewSetting& setting, DiagnosticLi
                               (text ? *text : std::string()) + "'");
         return;
     }
-    std::filesystem::path path(file);
-    if (path.is_relative())
-        path = std::filesystem::path(setting.location.file).parent_path() / path;
-    std::string problem;
-    const std::optional<std::string> bytes = readUserFile(path, problem);
-    if (!bytes) {
-        diagnostics.error(setting.location, "the curve file '" + path.string() + "' " + problem);
-        return;
-    }
+    const std::filesystem::path path = settingFilePath(setting, file);
+    const std::optional<std::string> bytes = readSettingFile(setting, path, "curve", diagnostics);
+    if (!bytes) return;
     try {
         lsystem.curves.push_back(parseCurveFile(*bytes, path.string(), samples));
     } catch (const Error& e) {

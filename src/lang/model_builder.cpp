@@ -10,8 +10,8 @@
 
 #include "contour_setting.hpp"
 #include "curve_setting.hpp"
-#include "graftal/file_reading.hpp"
 #include "graftal/parser_target.hpp"
+#include "setting_file.hpp"
 
 namespace graftal {
 
@@ -173,15 +173,9 @@ void ModelBuilder::loadFunctions(const ViewSetting& setting) {
         }
         samples = static_cast<int>(d);
     }
-    std::filesystem::path path(name);
-    if (path.is_relative())
-        path = std::filesystem::path(setting.location.file).parent_path() / path;
-    std::string problem;
-    const std::optional<std::string> bytes = readUserFile(path, problem);
-    if (!bytes) {
-        diags_.error(setting.location, "the function file '" + path.string() + "' " + problem);
-        return;
-    }
+    const std::filesystem::path path = settingFilePath(setting, name);
+    const std::optional<std::string> bytes = readSettingFile(setting, path, "function", diags_);
+    if (!bytes) return;
     try {
         if (setting.name == "function set")
             model_.lsystem.functions = parseFunctionSet(*bytes, path.string());
