@@ -36,7 +36,7 @@ FUZZ_PACKAGES := clang libclang-rt-dev
 FUZZ_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=undefined \
               -fsanitize=fuzzer-no-link -fno-omit-frame-pointer -g
 
-.PHONY: all deps configure build test test-tools demo gallery bench clean fuzz-deps fuzz-build fuzz
+.PHONY: all deps configure build build-program test test-tools demo gallery bench clean fuzz-deps fuzz-build fuzz
 
 all: build
 
@@ -62,6 +62,10 @@ configure: deps
 build: configure
 	@cmake --build $(BUILD_DIR) -j $(JOBS)
 
+# Only what the gallery needs: the graftal program (with the studio's page), not the tests.
+build-program: configure
+	@cmake --build $(BUILD_DIR) -j $(JOBS) --target graftal
+
 # The official glTF validator (npm) checks every .glb the tests write. It is a test tool,
 # installed into the build folder, never into the repository.
 test-tools: configure
@@ -73,7 +77,7 @@ test-tools: configure
 test: build test-tools
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 
-demo: build
+demo: build-program
 	@scripts/render_gallery.sh $(BUILD_DIR)/graftal gallery
 
 gallery: demo

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "graftal/atomic_file.hpp"
+#include "graftal/destination.hpp"
 #include "graftal/file_format.hpp"
 #include "graftal/scene.hpp"
 
@@ -82,6 +83,11 @@ class StreamedPng {
 void writeSvg(const Scene& scene, const RenderOptions& o, std::ostream& out);
 void writePng(const Scene& scene, const RenderOptions& o, const std::filesystem::path& path);
 void writePdf(const Scene& scene, const RenderOptions& o, const std::filesystem::path& path);
+// The same into a stream; `name` names the output in errors.
+void writePng(const Scene& scene, const RenderOptions& o, std::ostream& out,
+              const std::filesystem::path& name);
+void writePdf(const Scene& scene, const RenderOptions& o, std::ostream& out,
+              const std::filesystem::path& name);
 
 // 3D files of a mesh. Each writes atomically (temporary file, then rename) and throws Error.
 void writeObj(const Mesh& mesh, const std::filesystem::path& path);  // + .mtl beside it
@@ -103,6 +109,13 @@ void writeObj(const MeshScene& scene, const std::filesystem::path& path);
 void writePly(const MeshScene& scene, const std::filesystem::path& path);
 void writeGlb(const MeshScene& scene, const std::filesystem::path& path,
               const GlbOptions& options = {});
+// The same to any destination. The OBJ names its materials by `mtl`'s file name (mtllib).
+void writeObj(const Mesh& mesh, const Destination& obj, const Destination& mtl);
+void writePly(const Mesh& mesh, const Destination& destination);
+void writeObj(const MeshScene& scene, const Destination& obj, const Destination& mtl);
+void writePly(const MeshScene& scene, const Destination& destination);
+void writeGlb(const MeshScene& scene, const Destination& destination,
+              const GlbOptions& options = {});
 
 // The picture formats of the format table (file_format.hpp).
 using ImageFormat = FileFormat;
@@ -114,5 +127,8 @@ std::optional<ImageFormat> imageFormatFor(const std::filesystem::path& path);
 // that is renamed into place only when complete, so a failure never leaves a partial
 // file. Throws graftal::Error.
 void writeImage(const Scene& scene, const RenderOptions& o, const std::filesystem::path& path);
+// The picture in `format` to any destination (a file is written atomically).
+void writeImage(const Scene& scene, const RenderOptions& o, ImageFormat format,
+                const Destination& destination);
 
 }  // namespace graftal

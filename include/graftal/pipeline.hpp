@@ -15,6 +15,7 @@
 
 #include "graftal/cancellation.hpp"
 #include "graftal/derivation.hpp"
+#include "graftal/destination.hpp"
 #include "graftal/diagnostics.hpp"
 #include "graftal/file_format.hpp"
 #include "graftal/model.hpp"
@@ -33,6 +34,7 @@ enum class StreamPolicy {
 // How to derive: what `-n`, `--seed`, `--threads`, `--memory-limit` and `--stream` say.
 struct DeriveRequest {
     std::optional<int> steps;  // empty: the file's derivation length
+    std::optional<int> maxSteps;  // the most steps a front end allows (the studio's limit)
     std::optional<std::uint64_t> seed;
     unsigned threads = 0;  // 0: one per core
     std::size_t memoryLimit = std::size_t(2) << 30;
@@ -86,6 +88,9 @@ struct RenderResult {
     int steps = 0;
     RenderRoute route = RenderRoute::LineArt;
     std::vector<Diagnostic> notes;
+    // An OBJ's materials (.mtl text) when the OBJ went to a stream or memory; a file's
+    // are written beside it.
+    std::string materials;
 };
 
 // How finely a 3D scene is meshed: the sides of a stem's tube and the grid cells per side
@@ -100,7 +105,8 @@ struct MeshResolution {
 std::optional<MeshResolution> meshResolutionFor(std::string_view quality);
 
 // The steps a request asks for: its own, else the model's derivation length. Throws Error
-// for a negative count.
+// (about the field "steps") for a negative count or one over request.maxSteps: the one
+// place a step count is checked.
 int requestedSteps(const Model& model, const DeriveRequest& request);
 
 // Whether to stream. Auto: when the predicted string would not fit the memory limit and
@@ -124,6 +130,11 @@ FileFormat checkRenderRequest(const RenderRequest& request);
 // turtle's scene with the request's or the file's B-spline smoothing (through the drawn
 // segments, or through the whole path with f moves when `spline: path`) and kolam dots.
 Scene sceneForRender(const Model& model, ModuleString shown, const RenderRequest& request);
+
+// A picture or 3D file of `format` to any destination: the writer of those formats in the
+// export registry (export.hpp). Throws Error (Cancelled when request.cancel is raised).
+RenderResult renderTo(const Model& model, const RenderRequest& request, FileFormat format,
+                      const Destination& destination);
 
 // Derives and renders to request.output as `graftal render` does. Throws Error (Cancelled
 // when request.cancel is raised); no partial output file is left.

@@ -65,7 +65,8 @@ AnimateCommand::AnimateCommand(CLI::App& app,
 }
 
 int AnimateCommand::run(const InputOptions& in) {
-    AnimationRequest request = request_;
+    ExportRequest request;
+    static_cast<AnimationRequest&>(request) = request_;
     static_cast<DeriveRequest&>(request) = deriveRequest(in);
     request.output = output_;
     // A model folder's files are beside its .l, the model's own file.
@@ -75,26 +76,12 @@ int AnimateCommand::run(const InputOptions& in) {
     if (!size_.empty()) parseImageSize(size_, request.picture.width, request.picture.height);
     if (!background_.empty()) request.background = parseColor(background_);
     if (!color_.empty()) request.picture.lineColor = parseColor(color_);
-    if (!view_.empty()) {
-        request.view = viewDirectionFromName(view_);
-        if (!request.view)
-            throw Error(SourceLocation{"graftal", 0, 0},
-                        "--view '" + view_ + "': expected front, back, side or top");
-    }
+    if (!view_.empty()) request.view = parseViewOption(view_);
     if (!viewpoint_.empty()) request.viewpoint = parseVector("--viewpoint", viewpoint_);
     if (!target_.empty()) request.target = parseVector("--target", target_);
     if (!up_.empty()) request.up = parseVector("--up", up_);
     if (!light_.empty()) request.light = parseVector("--light", light_);
-    if (!quality_.empty()) {
-        const std::optional<MeshResolution> resolution = meshResolutionFor(quality_);
-        if (!resolution)
-            throw Error(SourceLocation{"graftal", 0, 0},
-                        "--quality '" + quality_ +
-                            "': expected low, medium, high or a number from 3 to 64");
-        request.tubeSides = resolution->tubeSides;
-        request.surfaceDivisions = resolution->surfaceDivisions;
-    }
-    if (tubeSides_) request.tubeSides = *tubeSides_;
+    applyMeshQuality(request, quality_, tubeSides_);
     // Option errors and an output that cannot be written, before the file is read.
     checkAnimationRequest(request);
     checkAnimationOutput(request.output, *animationFormatFor(request.output));
@@ -113,7 +100,7 @@ int AnimateCommand::run(const InputOptions& in) {
     Loaded l = loadInput(in);
     if (!request.steps) request.steps = l.steps;
     try {
-        writeAnimationFile(l.model, request);
+        exportModel(l.model, Destination::file(output_), request);
     } catch (...) {
         if (shown) std::cerr << '\n';
         throw;

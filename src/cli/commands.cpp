@@ -16,6 +16,7 @@
 #include "graftal/lsystem.hpp"
 #include "graftal/model.hpp"
 #include "graftal/pipeline.hpp"
+#include "graftal/stages.hpp"
 #include "graftal/streamed_interpretation.hpp"
 #include "graftal/streaming.hpp"
 #include "graftal/turtle.hpp"
@@ -115,9 +116,6 @@ bool showsProgress(const InputOptions& in) {
 }
 
 Loaded loadInput(const InputOptions& in) {
-    if (in.steps && *in.steps < 0)
-        throw usageError("-n " + std::to_string(*in.steps) +
-                         ": the derivation length must be 0 or more");
     ParseOptions po;
     po.defines = in.defines;
     po.viewFile = in.viewFile;
@@ -134,7 +132,10 @@ Loaded loadInput(const InputOptions& in) {
     if (!parsed.ok()) throw Error(parsed.errors());
     if (!in.quiet) printWarnings(parsed);
     Loaded l{std::move(parsed.model), 0};
-    l.steps = in.steps.value_or(l.model.lsystem.derivationLength);
+    // The library checks the count (its message names the field, worded here as -n).
+    DeriveRequest steps;
+    steps.steps = in.steps;
+    l.steps = requestedSteps(l.model, steps);
     // Percent done needs the work ahead: the predicted size of every step's string.
     if (showsProgress(in))
         progressLine.expect(predictGrowth(l.model.lsystem, l.steps).expectedModules);
@@ -183,10 +184,11 @@ bool chooseStreaming(const Loaded& l, const InputOptions& in, bool canStream, bo
 }
 
 Derived deriveLoaded(Loaded loaded, const InputOptions& in) {
-    Derived d{std::move(loaded.model), {}, loaded.steps};
-    d.modules = derive(d.model, d.steps, derivationOptions(in, d.model));
+    DeriveRequest request = deriveRequest(in);
+    request.steps = loaded.steps;
+    graftal::Derived derived = graftal::derived(loaded.model, request);
     endProgressLine();
-    return d;
+    return Derived{std::move(loaded.model), std::move(derived.modules), derived.steps};
 }
 
 Vec3 parseVector(const std::string& option, const std::string& text) {

@@ -12,6 +12,8 @@
 #include "graftal/model.hpp"
 #include "graftal/module_string.hpp"
 #include "graftal/output.hpp"
+#include "graftal/destination.hpp"
+#include "graftal/export.hpp"
 #include "graftal/pipeline.hpp"
 
 namespace graftal::cli {
@@ -54,6 +56,15 @@ enum class DeriveFormat { Text, Json };
 int runDerive(const InputOptions& in, bool homomorphism, DeriveFormat format);
 int runStats(const InputOptions& in, bool geometry, bool predict);
 int runRender(const InputOptions& in, const RenderCommandOptions& out);
+// The export request render's options make (derivation, picture, camera, mesh) and where
+// the output goes: a file, or standard output for -o -. Throws Error for bad options.
+ExportRequest renderRequest(const InputOptions& in, const RenderCommandOptions& out);
+Destination renderDestination(const RenderCommandOptions& out);
+// --view NAME as a direction; throws Error naming the choices.
+ViewDirection parseViewOption(const std::string& name);
+// --quality (low, medium, high, N) and then --tube-sides into the request's mesh resolution.
+void applyMeshQuality(RenderRequest& request, const std::string& quality,
+                      std::optional<int> tubeSides);
 
 // The file read (once: its warnings are printed here) and the step count settled, nothing
 // derived yet.

@@ -10,6 +10,7 @@
 #include "graftal/map_lsystem.hpp"
 #include "graftal/output.hpp"
 #include "graftal/plane_map.hpp"
+#include "graftal/stages.hpp"
 #include "standard_streams.hpp"
 
 namespace graftal::cli {
@@ -26,9 +27,6 @@ struct LoadedMap {
 };
 
 LoadedMap loadMap(const InputOptions& in) {
-    if (in.steps && *in.steps < 0)
-        throw usageError("-n " + std::to_string(*in.steps) +
-                         ": the derivation length must be 0 or more");
     if (!in.viewFile.empty())
         throw usageError("a map L-system takes no view file ('" + in.viewFile + "')");
     ParseOptions po;
@@ -44,7 +42,7 @@ LoadedMap loadMap(const InputOptions& in) {
     if (!in.quiet)
         for (const auto& w : parsed.warnings()) std::cerr << w.toString() << '\n';
     LoadedMap l{std::move(parsed).orThrow(), 0};
-    l.steps = in.steps.value_or(l.system.derivationLength);
+    l.steps = in.steps.value_or(l.system.derivationLength);  // derivedMap() checks it
     return l;
 }
 
@@ -67,21 +65,11 @@ MapDerivationOptions derivationOptions(const InputOptions& in, const MapOptions&
     return o;
 }
 
-struct DerivedMap {
-    PlaneMap map;
-    MapStepReport last;
-    long long relaxIterations = 0;  // over all steps
-};
-
 DerivedMap derive(const InputOptions& in, const MapOptions& options) {
-    MapDerivationOptions o = derivationOptions(in, options);  // option errors first
+    MapRequest request;
+    request.derivation = derivationOptions(in, options);  // option errors first
     LoadedMap l = loadMap(in);
-    DerivedMap d;
-    d.map = deriveMap(l.system, l.steps, o, [&](const PlaneMap&, const MapStepReport& r) {
-        d.last = r;
-        d.relaxIterations += r.relaxIterations;
-    });
-    return d;
+    return derivedMap(l.system, l.steps, request);
 }
 
 }  // namespace
@@ -139,37 +127,18 @@ int runMapStats(const InputOptions& in, const MapOptions& map) {
 }
 
 int runMapRender(const InputOptions& in, const RenderCommandOptions& out, const MapOptions& map) {
-    // -o -: the picture goes through a scratch file to standard output, as for string
-    // L-systems.
-    std::optional<ScratchFile> scratch;
-    std::string output = out.output;
-    if (out.output == "-") {
-        const FileFormat format = standardOutputFormat(out.outputFormat);
-        scratch.emplace("out" + std::string(fileFormatInfo(format).extension));
-        output = scratch->path().string();
-    } else if (!out.outputFormat.empty()) {
-        throw usageError("--format applies to -o - (standard output); the extension of " +
-                         out.output + " names its format");
-    }
-    if (!imageFormatFor(output))
-        throw usageError("'" + out.output +
-                         "': a map L-system is drawn as a picture (.svg, .png or .pdf)");
-    if (!out.view.empty() || out.derivation)
-        throw usageError("--view and --derivation do not apply to a map L-system");
-    MapDrawingOptions drawing;
-    drawing.splines = map.geometry == "spline";
-    drawing.widthByAge = !map.uniformWidth;
+    ExportRequest request = renderRequest(in, out);
+    request.map.derivation = derivationOptions(in, map);
+    request.map.drawing.splines = map.geometry == "spline";
+    request.map.drawing.widthByAge = !map.uniformWidth;
     if (auto fill = mapFillFromName(map.fill))
-        drawing.fill = *fill;
+        request.map.drawing.fill = *fill;
     else
         throw usageError("--map-fill '" + map.fill + "': expected none, age, sides or labels");
-    if (out.spline && *out.spline > 0) drawing.splineSubdivisions = *out.spline;
-    DerivedMap d = derive(in, map);
-    Scene scene = mapScene(d.map, drawing);
-    RenderOptions o = out.render;
-    if (o.lineColor) scene.palette[0] = *o.lineColor, o.lineColor.reset();
-    writeImage(scene, o, output);
-    if (scratch && !copyToStandardOutput(output)) return 1;
+    if (out.spline && *out.spline > 0) request.map.drawing.splineSubdivisions = *out.spline;
+    LoadedMap l = loadMap(in);
+    request.steps = l.steps;
+    exportMap(l.system, renderDestination(out), request);
     return 0;
 }
 

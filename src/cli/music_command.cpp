@@ -2,6 +2,10 @@
 // library derives, reads the curve and writes the score.
 #include "music_command.hpp"
 
+#include <filesystem>
+
+#include "commands.hpp"
+#include "graftal/export.hpp"
 #include "graftal/music.hpp"
 
 namespace graftal::cli {
@@ -33,7 +37,11 @@ void addMusicOptions(CLI::App& cmd, MusicCommandOptions& o) {
 }
 
 int runMusic(const InputOptions& in, const MusicCommandOptions& o) {
-    if (!musicFormatFor(o.output))
+    // The music format of the output's extension, from the export registry (.pdf, .png and
+    // .svg are engraved scores here, not pictures).
+    const ExportFormat* format =
+        findExportFormat(std::filesystem::path(o.output).extension().string(), ExportKind::Music);
+    if (!format)
         throw optionError("-o",
                           "'" + o.output + "': expected a music file " + musicExtensionList());
     Loaded l = loadInput(in);
@@ -52,12 +60,15 @@ int runMusic(const InputOptions& in, const MusicCommandOptions& o) {
             throw optionError("--axis", "expected x or y, got '" + o.axis + "'");
         options.pitchFromX = o.axis == "x";
     }
-    Score score = scoreFromModel(l.model, l.steps, options, derivationOptions(in, l.model));
+    ExportRequest request;
+    static_cast<DeriveRequest&>(request) = deriveRequest(in);
+    request.steps = l.steps;
+    request.format = format->name;
+    request.music = options;
+    request.audio.sampleRate = o.sampleRate;
+    request.audio.soundFont = o.soundFont;
+    exportModel(l.model, Destination::file(o.output), request);
     endProgressLine();
-    AudioOptions audio;
-    audio.sampleRate = o.sampleRate;
-    audio.soundFont = o.soundFont;
-    writeScore(score, o.output, audio);
     return 0;
 }
 

@@ -3,10 +3,12 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <iostream>
 #include <optional>
 
 #include "commands.hpp"
 #include "graftal/file_format.hpp"
+#include "graftal/export.hpp"
 #include "graftal/pipeline.hpp"
 #include "standard_streams.hpp"
 
@@ -36,14 +38,33 @@ FileFormat standardOutputFormat(const std::string& outputFormat) {
     return *format;
 }
 
-int runRender(const InputOptions& in, const RenderCommandOptions& out) {
-    RenderRequest request;
+ViewDirection parseViewOption(const std::string& name) {
+    const std::optional<ViewDirection> view = viewDirectionFromName(name);
+    if (!view) throw usageError("--view '" + name + "': expected front, back, side or top");
+    return *view;
+}
+
+void applyMeshQuality(RenderRequest& request, const std::string& quality,
+                      std::optional<int> tubeSides) {
+    if (!quality.empty()) {
+        const std::optional<MeshResolution> resolution = meshResolutionFor(quality);
+        if (!resolution)
+            throw usageError("--quality '" + quality +
+                             "': expected low, medium, high or a number from 3 to 64");
+        request.tubeSides = resolution->tubeSides;
+        request.surfaceDivisions = resolution->surfaceDivisions;
+    }
+    if (tubeSides) request.tubeSides = *tubeSides;
+}
+
+// The export request of render's options, and where it goes: a file, or standard output
+// for -o - (its format from --format).
+ExportRequest renderRequest(const InputOptions& in, const RenderCommandOptions& out) {
+    ExportRequest request;
     static_cast<DeriveRequest&>(request) = deriveRequest(in);
-    std::optional<ScratchFile> scratch;
     if (out.output == "-") {
-        const FileFormat format = standardOutputFormat(out.outputFormat);
-        scratch.emplace("out" + std::string(fileFormatInfo(format).extension));
-        request.output = scratch->path();
+        request.format = fileFormatInfo(standardOutputFormat(out.outputFormat)).extension;
+        request.output = "out" + request.format;  // the checks below read its extension
     } else {
         if (!out.outputFormat.empty())
             throw usageError("--format applies to -o - (standard output); the extension of " +
@@ -55,28 +76,14 @@ int runRender(const InputOptions& in, const RenderCommandOptions& out) {
         in.file == "-" || std::filesystem::is_directory(in.file) ? std::string() : in.file;
     request.picture = out.render;
     if (out.backgroundGiven) request.background = out.render.background;
-    if (!out.view.empty()) {
-        request.view = viewDirectionFromName(out.view);
-        if (!request.view)
-            throw Error(SourceLocation{"graftal", 0, 0},
-                        "--view '" + out.view + "': expected front, back, side or top");
-    }
+    if (!out.view.empty()) request.view = parseViewOption(out.view);
     request.viewpoint = out.viewpoint;
     request.target = out.target;
     request.up = out.up;
     request.light = out.light;
     request.fieldOfView = out.fieldOfView;
     request.samplesPerPixel = out.samplesPerPixel;
-    if (!out.quality.empty()) {
-        const std::optional<MeshResolution> resolution = meshResolutionFor(out.quality);
-        if (!resolution)
-            throw Error(SourceLocation{"graftal", 0, 0},
-                        "--quality '" + out.quality +
-                            "': expected low, medium, high or a number from 3 to 64");
-        request.tubeSides = resolution->tubeSides;
-        request.surfaceDivisions = resolution->surfaceDivisions;
-    }
-    if (out.tubeSides) request.tubeSides = *out.tubeSides;
+    applyMeshQuality(request, out.quality, out.tubeSides);
     request.ground = out.ground;
     request.spline = out.spline;
     if (out.splinePath) request.splinePath = true;
@@ -84,13 +91,22 @@ int runRender(const InputOptions& in, const RenderCommandOptions& out) {
     request.derivationDiagram = out.derivation;
     request.glb.instancing = !out.noInstancing;
     request.glb.compression = out.compress;
+    return request;
+}
+
+Destination renderDestination(const RenderCommandOptions& out) {
+    return out.output == "-" ? Destination::stream(std::cout, "<stdout>")
+                             : Destination::file(out.output);
+}
+
+int runRender(const InputOptions& in, const RenderCommandOptions& out) {
+    ExportRequest request = renderRequest(in, out);
     checkRenderRequest(request);  // option errors before the file is read
 
     Loaded l = loadInput(in);
     request.steps = l.steps;
-    render(l.model, request);
+    exportModel(l.model, renderDestination(out), request);
     endProgressLine();
-    if (scratch && !copyToStandardOutput(request.output)) return 1;
     return 0;
 }
 

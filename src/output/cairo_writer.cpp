@@ -8,9 +8,11 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <ostream>
 #include <string>
 #include <vector>
 
+#include "graftal/atomic_file.hpp"
 #include "graftal/diagnostics.hpp"
 #include "graftal/framed_picture.hpp"
 #include "graftal/output.hpp"
@@ -130,7 +132,27 @@ void drawScene(cairo_t* cr, const Scene& scene, const RenderOptions& o, const Bo
 
 }  // namespace
 
+namespace {
+
+// Cairo's write callback into a std::ostream.
+cairo_status_t writeToStream(void* closure, const unsigned char* data, unsigned int length) {
+    auto* out = static_cast<std::ostream*>(closure);
+    out->write(reinterpret_cast<const char*>(data), length);
+    return *out ? CAIRO_STATUS_SUCCESS : CAIRO_STATUS_WRITE_ERROR;
+}
+
+}  // namespace
+
 void writePng(const Scene& scene, const RenderOptions& o, const std::filesystem::path& path) {
+    writeStreamAtomically(path, [&](std::ostream& out) { writePng(scene, o, out, path); }, "PNG");
+}
+
+void writePdf(const Scene& scene, const RenderOptions& o, const std::filesystem::path& path) {
+    writeStreamAtomically(path, [&](std::ostream& out) { writePdf(scene, o, out, path); }, "PDF");
+}
+
+void writePng(const Scene& scene, const RenderOptions& o, std::ostream& out,
+              const std::filesystem::path& path) {
     checkSize(o, path, kMaxPixelSize);
     SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, o.width, o.height),
                        &cairo_surface_destroy);
@@ -146,7 +168,7 @@ void writePng(const Scene& scene, const RenderOptions& o, const std::filesystem:
             throw cairoError(path, "cannot draw the picture", st);
     }
     cairo_surface_flush(surface.get());
-    if (auto st = cairo_surface_write_to_png(surface.get(), path.c_str());
+    if (auto st = cairo_surface_write_to_png_stream(surface.get(), writeToStream, &out);
         st != CAIRO_STATUS_SUCCESS)
         throw cairoError(path, "cannot write PNG", st);
 }
@@ -185,10 +207,11 @@ RgbaImage drawLineArt(const Scene& scene, const RenderOptions& o, const Bounds& 
     return image;
 }
 
-void writePdf(const Scene& scene, const RenderOptions& o, const std::filesystem::path& path) {
+void writePdf(const Scene& scene, const RenderOptions& o, std::ostream& out,
+              const std::filesystem::path& path) {
     // PDF viewers refuse pages over 200 inches (14400 points) a side.
     checkSize(o, path, 14400);
-    SurfacePtr surface(cairo_pdf_surface_create(path.c_str(), o.width, o.height),
+    SurfacePtr surface(cairo_pdf_surface_create_for_stream(writeToStream, &out, o.width, o.height),
                        &cairo_surface_destroy);
     if (auto st = cairo_surface_status(surface.get()); st != CAIRO_STATUS_SUCCESS)
         throw cairoError(path, "cannot create PDF", st);

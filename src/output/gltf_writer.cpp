@@ -287,20 +287,19 @@ Mesh copiesOf(const MeshScene& scene, const std::vector<const MeshPlacement*>& w
     return out;
 }
 
-void writeDocument(const std::filesystem::path& path,
+void writeDocument(const Destination& destination,
                    const std::function<void(GltfDocument&)>& build, const std::vector<Rgb>& palette,
                    const GlbOptions& options, std::size_t estimate) {
     const std::string format(fileFormatInfo(FileFormat::Glb).name);
-    // The directory is checked first, so that a missing one is reported before any work.
-    writeStreamAtomically(
-        path,
+    // A file's directory is checked first, so that a missing one is reported before any work.
+    destination.write(
+        format,
         [&](std::ostream& file) {
-            GltfDocument document(palette, options, path);
+            GltfDocument document(palette, options, destination.path());
             document.reserve(estimate);
             build(document);
             document.write(file);
-        },
-        format);
+        });
 }
 
 }  // namespace
@@ -309,12 +308,18 @@ void writeGlb(const Mesh& mesh, const std::filesystem::path& path) {
     mesh_file::checkMesh(mesh, path, std::string(fileFormatInfo(FileFormat::Glb).name));
     // Exact unless vertices are shared by colours (then they are written once per colour).
     writeDocument(
-        path, [&](GltfDocument& d) { d.show(d.addMesh(mesh, "graftal"), "graftal"); }, mesh.palette,
+        Destination::file(path),
+        [&](GltfDocument& d) { d.show(d.addMesh(mesh, "graftal"), "graftal"); }, mesh.palette,
         GlbOptions{}, 24 * mesh.positions.size() + 4 * mesh.indices.size());
 }
 
 void writeGlb(const MeshScene& scene, const std::filesystem::path& path,
               const GlbOptions& options) {
+    writeGlb(scene, Destination::file(path), options);
+}
+
+void writeGlb(const MeshScene& scene, const Destination& destination, const GlbOptions& options) {
+    const std::filesystem::path& path = destination.path();
     checkScene(scene, path, std::string(fileFormatInfo(FileFormat::Glb).name));
     // Which placements are instanced, per prototype and mirroring, and which are copied.
     std::map<std::pair<std::uint32_t, bool>, std::vector<instance_transform::Trs>> instances;
@@ -338,7 +343,7 @@ void writeGlb(const MeshScene& scene, const std::filesystem::path& path,
         estimate += 24 * proto.positions.size() + 4 * proto.indices.size();
     }
     writeDocument(
-        path,
+        destination,
         [&](GltfDocument& d) {
             d.show(d.addMesh(scene.mesh, "graftal"), "graftal");
             d.show(d.addMesh(copiesOf(scene, copied), "copies"), "copies");

@@ -1,48 +1,35 @@
-// writeImage: picks the writer by extension and makes the write atomic (atomic_file.hpp), so
-// a reader never sees half a PNG and a failed render never destroys the previous picture.
-#include <cerrno>
-#include <cstring>
-#include <fstream>
+// writeImage: picks the picture writer by format and writes to a destination; a file is
+// written atomically (atomic_file.hpp), so a reader never sees half a PNG and a failed
+// render never destroys the previous picture.
 #include <string>
 
-#include "graftal/atomic_file.hpp"
+#include "graftal/destination.hpp"
 #include "graftal/diagnostics.hpp"
 #include "graftal/output.hpp"
 
 namespace graftal {
 
-namespace {
-
 namespace fs = std::filesystem;
 
-void writeSvgFile(const Scene& scene, const RenderOptions& o, const fs::path& path) {
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    if (!out) throw fileError(path, std::string("cannot create file: ") + std::strerror(errno));
-    writeSvg(scene, o, out);
-    out.close();
-    if (!out)
-        throw fileError(path, "cannot write " + std::string(fileFormatInfo(FileFormat::Svg).name) +
-                                  ": write failed (disk full?)");
+void writeImage(const Scene& scene, const RenderOptions& o, ImageFormat format,
+                const Destination& destination) {
+    const std::string what(fileFormatInfo(format).name);
+    destination.write(what, [&](std::ostream& out) {
+        switch (format) {
+            case ImageFormat::Svg:
+                writeSvg(scene, o, out);
+                return;
+            case ImageFormat::Png:
+                writePng(scene, o, out, destination.path());
+                return;
+            case ImageFormat::Pdf:
+                writePdf(scene, o, out, destination.path());
+                return;
+            default:
+                throw fileError(destination.path(), what + " is not a picture format");
+        }
+    });
 }
-
-void writeByFormat(ImageFormat format, const Scene& scene, const RenderOptions& o,
-                   const fs::path& path) {
-    switch (format) {
-        case ImageFormat::Svg:
-            writeSvgFile(scene, o, path);
-            return;
-        case ImageFormat::Png:
-            writePng(scene, o, path);
-            return;
-        case ImageFormat::Pdf:
-            writePdf(scene, o, path);
-            return;
-        default:
-            break;
-    }
-}
-
-}  // namespace
 
 void writeImage(const Scene& scene, const RenderOptions& o, const fs::path& path) {
     const std::optional<ImageFormat> format = imageFormatFor(path);
@@ -52,8 +39,7 @@ void writeImage(const Scene& scene, const RenderOptions& o, const fs::path& path
                                            : "unknown image file extension '" + ext + "'") +
                                   "; use " + extensionList(FormatKind::Picture));
     }
-    writeFileAtomically(
-        path, [&](const fs::path& temporary) { writeByFormat(*format, scene, o, temporary); });
+    writeImage(scene, o, *format, Destination::file(path));
 }
 
 }  // namespace graftal

@@ -14,4 +14,12 @@ void writePly(const MeshScene& scene, const std::filesystem::path& path) {
     writePly(scene.flattened(), path);
 }
 
+void writeObj(const MeshScene& scene, const Destination& obj, const Destination& mtl) {
+    writeObj(scene.flattened(), obj, mtl);
+}
+
+void writePly(const MeshScene& scene, const Destination& destination) {
+    writePly(scene.flattened(), destination);
+}
+
 }  // namespace graftal

@@ -65,14 +65,22 @@ void writeVectors(TextBuffer& out, const char* tag, const std::vector<Vec3f>& ve
 }  // namespace
 
 void writeObj(const Mesh& mesh, const std::filesystem::path& path) {
-    const std::string format(fileFormatInfo(FileFormat::Obj).name);
-    mesh_file::checkMesh(mesh, path, format);
     std::filesystem::path mtlPath = path;
     mtlPath.replace_extension(".mtl");
     if (mtlPath == path)
-        throw fileError(path, "cannot write " + format + ": the materials go to '" +
-                                  mtlPath.string() + "'; use the extension " +
+        throw fileError(path, "cannot write " + std::string(fileFormatInfo(FileFormat::Obj).name) +
+                                  ": the materials go to '" + mtlPath.string() +
+                                  "'; use the extension " +
                                   std::string(fileFormatInfo(FileFormat::Obj).extension));
+    writeObj(mesh, Destination::file(path), Destination::file(mtlPath));
+}
+
+void writeObj(const Mesh& mesh, const Destination& objDestination,
+              const Destination& mtlDestination) {
+    const std::string format(fileFormatInfo(FileFormat::Obj).name);
+    const std::filesystem::path& path = objDestination.path();
+    const std::filesystem::path mtlPath = mtlDestination.path();
+    mesh_file::checkMesh(mesh, path, format);
     // Both files are complete before either is renamed into place, the materials first so
     // that a reader of the new OBJ never finds the old .mtl: the materials are written and
     // renamed while the OBJ is still a temporary.
@@ -113,9 +121,9 @@ void writeObj(const Mesh& mesh, const std::filesystem::path& path) {
             }
         }
         obj.flush();
-        writeStreamAtomically(mtlPath, writeMaterials, "MTL");
+        mtlDestination.write("MTL", writeMaterials);
     };
-    writeStreamAtomically(path, writeGeometry, format);
+    objDestination.write(format, writeGeometry);
 }
 
 }  // namespace graftal

@@ -97,11 +97,15 @@ void writeMesh(const Mesh& mesh, const std::filesystem::path& path, std::ostream
 }  // namespace
 
 void writePly(const Mesh& mesh, const std::filesystem::path& path) {
+    writePly(mesh, Destination::file(path));
+}
+
+void writePly(const Mesh& mesh, const Destination& destination) {
     const std::string format(fileFormatInfo(FileFormat::Ply).name);
-    mesh_file::checkMesh(mesh, path, format);
-    // The directory is checked first, so that a missing one is reported before any work.
-    writeStreamAtomically(
-        path, [&](std::ostream& file) { writeMesh(mesh, path, file); }, format);
+    mesh_file::checkMesh(mesh, destination.path(), format);
+    // A file's directory is checked first, so that a missing one is reported before any work.
+    destination.write(format,
+                      [&](std::ostream& file) { writeMesh(mesh, destination.path(), file); });
 }
 
 }  // namespace graftal

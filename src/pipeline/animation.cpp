@@ -19,6 +19,7 @@
 #include "graftal/mesh.hpp"
 #include "graftal/projection.hpp"
 #include "graftal/render3d.hpp"
+#include "graftal/stages.hpp"
 #include "graftal/turtle.hpp"
 #include "pipeline/module_ages.hpp"
 #include "pipeline/render_settings.hpp"
@@ -167,31 +168,23 @@ class Sequence {
             if (s >= from) strings_.push_back(derivation.current());
         }
         derivation.finish();
-        folder_ = sourceFolder(model, request);
-        if (!model.view.colorMap.empty()) colorMap_ = loadColorMap(folder_ / model.view.colorMap);
     }
 
     bool continuous() const { return !ages_.empty(); }
     const std::vector<ModuleString>& strings() const { return strings_; }
 
-    // The scene of `step` at `fraction` of the way to the next one.
+    // The scene of `step` at `fraction` of the way to the next one, drawn as render() draws
+    // a step (the pipeline's drawn()).
     Scene scene(int step, double fraction) const {
         const ModuleString& modules = strings_[std::size_t(step - from_)];
         const DerivationOptions options = derivationOptions(model_, request_);
-        Scene scene;
         if (fraction > 0 && continuous())
-            scene = interpret(
+            return drawn(
                 model_,
-                applyHomomorphism(model_.lsystem, agedString(modules, ages_, fraction), options));
-        else
-            scene = interpret(model_, applyHomomorphism(model_.lsystem, modules, options));
-        if (int n = request_.spline.value_or(model_.view.splineSubdivisions); n > 0)
-            scene = smoothSegments(scene, n);
-        if (colorMap_) scene.palette = *colorMap_;
-        return scene;
+                applyHomomorphism(model_.lsystem, agedString(modules, ages_, fraction), options),
+                request_);
+        return drawn(model_, applyHomomorphism(model_.lsystem, modules, options), request_);
     }
-
-    const std::filesystem::path& folder() const { return folder_; }
 
   private:
     const Model& model_;
@@ -199,8 +192,6 @@ class Sequence {
     int from_;
     std::vector<ModuleAge> ages_;
     std::vector<ModuleString> strings_;
-    std::filesystem::path folder_;
-    std::optional<std::vector<Rgb>> colorMap_;
 };
 
 }  // namespace
@@ -324,8 +315,13 @@ AnimationResult animate(const Model& model, const AnimationRequest& request,
     if (!rayTraced) {
         // Line art: the scenes as seen (projected when 3D), the frame their union, one line
         // width for all (that of the largest picture, so lines do not thin as it grows).
+        // Discs and spheres (a kolam's dots) are drawn as their projected outlines, as
+        // render() draws them.
+        const bool roundShapes = std::any_of(scenes.begin(), scenes.end(), [](const auto& s) {
+            return s && (!s->discs.empty() || !s->spheres.empty());
+        });
         std::optional<ViewDirection> view;
-        if (threeD || request.turntableDegrees != 0)
+        if (threeD || request.turntableDegrees != 0 || roundShapes)
             view = request.view.value_or(ViewDirection::Front);
         Bounds all;
         for (const auto& s : scenes)
@@ -373,33 +369,28 @@ AnimationResult animate(const Model& model, const AnimationRequest& request,
     Bounds sceneBounds;
     for (const auto& s : scenes)
         if (s) sceneBounds.extend(s->bounds());
-    SurfaceLibrary surfaces = surfacesFor(model.view, sequence.folder());
-    std::optional<std::vector<Rgb>> materials;
-    if (!model.view.materialFile.empty())
-        materials = materialPalette(loadMaterials(sequence.folder() / model.view.materialFile));
-    MeshOptions mo;
-    // The view file's `cylinder sides:` unless --tube-sides was given.
-    mo.tubeSides = request.tubeSides != AnimationRequest{}.tubeSides
-                       ? request.tubeSides
-                       : model.view.tubeSides.value_or(request.tubeSides);
-    mo.surfaceDivisions = request.surfaceDivisions;
-    mo.cylinders = model.view.lineStyle == LineStyle::Cylinders;
+    MeshSetup setup = meshSetup(model, request, MeshPurpose::Picture);
     // Thin stems as in render(), for the pixel size of the camera framed on every frame.
-    setPictureRadii(mo, sceneBounds, options);
+    setPictureRadii(setup.options, sceneBounds, options);
+    std::vector<Diagnostic> meshNotes;
     std::vector<std::optional<MeshScene>> meshes(scenes.size());
     std::vector<const MeshScene*> shown;
     Bounds all;
     for (std::size_t k = 0; k < scenes.size(); ++k) {
         if (!scenes[k]) continue;
         request.cancel.check();
-        Scene& scene = *scenes[k];
-        if (model.view.colorMap.empty()) scene.palette = defaultPalette3D();
-        if (materials) scene.palette = *materials;
-        meshes[k] = buildMeshScene(scene, mo, &surfaces);
-        scene = Scene{};
+        meshes[k] = meshed(model, std::move(*scenes[k]), setup, meshNotes);
+        scenes[k] = Scene{};
         all.extend(meshes[k]->bounds());
         shown.push_back(&*meshes[k]);
     }
+    // Each frame's warnings (an undeclared surface) are said once.
+    for (Diagnostic& d : meshNotes)
+        if (std::none_of(result.notes.begin(), result.notes.end(),
+                         [&](const Diagnostic& n) { return n.message == d.message; })) {
+            if (request.notify) request.notify(d);
+            result.notes.push_back(std::move(d));
+        }
     result.frame = all;
     Camera camera;
     if (request.turntableDegrees != 0 && !all.empty()) {

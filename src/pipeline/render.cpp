@@ -13,7 +13,9 @@
 #include "graftal/material_file.hpp"
 #include "graftal/mesh.hpp"
 #include "graftal/mesh_scene.hpp"
+#include "graftal/export.hpp"
 #include "graftal/pipeline.hpp"
+#include "graftal/stages.hpp"
 #include "graftal/render3d.hpp"
 #include "graftal/streamed_picture.hpp"
 #include "graftal/surface.hpp"
@@ -129,7 +131,8 @@ RenderOptions lineArtOptions(const Model& model, const RenderRequest& request) {
 namespace {
 
 // The derivation as a diagram: the axiom and the string after every step.
-void renderDerivation(const Model& model, int steps, const RenderRequest& request) {
+void renderDerivation(const Model& model, int steps, const RenderRequest& request,
+                      const Destination& destination) {
     std::vector<ModuleString> strings;
     Derivation derivation(model, derivationOptions(model, request));
     strings.push_back(derivation.current());
@@ -143,7 +146,12 @@ void renderDerivation(const Model& model, int steps, const RenderRequest& reques
     else if (model.view.background)
         render.background = *model.view.background;
     request.cancel.check();
-    writeDerivationDiagram(strings, model.lsystem.symbols, render, request.output);
+    const std::string extension = destination.path().extension().string();
+    destination.writeThroughFile("picture", extension.empty() ? ".svg" : extension,
+                                 [&](const std::filesystem::path& file) {
+                                     writeDerivationDiagram(strings, model.lsystem.symbols,
+                                                            render, file);
+                                 });
 }
 
 // True when the string holds a label, @L: the module L right after an @.
@@ -201,21 +209,6 @@ void warnAt(RenderResult& result, const RenderRequest& request, SourceLocation w
     result.notes.push_back(std::move(d));
 }
 
-// Where surface `name` is first placed (`~` then `name`): the first production whose successor
-// places it, or the file when only the axiom does.
-SourceLocation placedAt(const LSystem& ls, const std::string& name) {
-    // `~` is a module of its own (as in cpfg): the surface is the module after it.
-    const int tilde = ls.symbols.find("~");
-    const int symbol = ls.symbols.find(name);
-    for (const auto* list : {&ls.productions, &ls.decomposition, &ls.homomorphism})
-        for (const Production& p : *list)
-            for (std::size_t i = 0; i + 1 < p.successor.size(); ++i)
-                if (static_cast<int>(p.successor[i].symbol) == tilde &&
-                    static_cast<int>(p.successor[i + 1].symbol) == symbol)
-                    return p.location;
-    return SourceLocation{ls.file, 0, 0};
-}
-
 // Settings the route taken does not use are said, not silently dropped.
 void warnIgnored(RenderResult& result, const RenderRequest& request, const Model& model,
                  std::string message, std::vector<std::string> fields) {
@@ -265,26 +258,12 @@ FileFormat checkRenderRequest(const RenderRequest& request) {
 }
 
 Scene sceneForRender(const Model& model, ModuleString shown, const RenderRequest& request) {
-    const bool path = request.splinePath.value_or(model.view.splineMode == SplineMode::Path);
-    int subdivisions = request.spline.value_or(model.view.splineSubdivisions);
-    if (request.splinePath.value_or(false) && !request.spline && subdivisions == 0)
-        subdivisions = 8;
-    // The kolams' B-spline runs through every position of the turtle, f moves included
-    // (LSFP 6.2.3): the moves become drawn segments, so the whole path is one curve.
-    if (path && subdivisions > 0)
-        for (Symbol& s : shown.rawSymbols())
-            if (s == 'f') s = 'F';
-    Scene scene = interpret(model, shown);
-    shown = ModuleString{};
-    if (request.kolamDots || model.view.kolamDots)
-        addKolamDots(scene, model.view.stepLength, 0.08 * model.view.stepLength);
-    if (subdivisions > 0) scene = smoothSegments(scene, subdivisions);
-    return scene;
+    return drawn(model, std::move(shown), request);
 }
 
-RenderResult render(const Model& model, const RenderRequest& request) {
-    const std::string output = request.output.string();
-    const std::optional<FileFormat> format = checkRenderRequest(request);
+RenderResult renderTo(const Model& model, const RenderRequest& request, FileFormat fileFormat,
+                      const Destination& destination) {
+    const std::optional<FileFormat> format = fileFormat;
     const bool picture = fileFormatInfo(*format).kind == FormatKind::Picture;
 
     RenderResult result;
@@ -293,7 +272,7 @@ RenderResult render(const Model& model, const RenderRequest& request) {
     if (request.derivationDiagram) {
         request.cancel.check();
         warnLineArtIgnores(result, request, model, false);
-        renderDerivation(model, steps, request);
+        renderDerivation(model, steps, request, destination);
         result.route = RenderRoute::DerivationDiagram;
         return result;
     }
@@ -306,29 +285,27 @@ RenderResult render(const Model& model, const RenderRequest& request) {
         // A picture with many strokes per pixel is drawn from its subtree summaries even when
         // its string would fit: its time then grows with the image, not with the string.
         // (The streamed picture has neither colour maps nor splines.)
-        const bool plainLines = model.view.colorMap.empty() &&
-                                request.spline.value_or(model.view.splineSubdivisions) <= 0;
+        const bool plainLines = model.view.colorMap.empty() && !drawsSplines(model, request) &&
+                                !request.kolamDots && !model.view.kolamDots;
         if ((pixelBound && plainLines) ||
             shouldStream(model, steps, request, png2D, true, pixelBound, result.notes)) {
             warnLineArtIgnores(result, request, model, false);
             RenderOptions render = request.picture;
             double fill = std::clamp(model.view.scaleFactor / 100.0, 0.01, 1.0);
             render.margin = 0.5 - (0.5 - render.margin) * fill;
-            renderStreamedPng(model, steps, derivationOptions(model, request), render, output);
+            destination.writeThroughFile("PNG", ".png", [&](const std::filesystem::path& file) {
+                renderStreamedPng(model, steps, derivationOptions(model, request), render, file);
+            });
             result.route = RenderRoute::StreamedPicture;
             return result;
         }
     }
-    const DerivationOptions derivation = derivationOptions(model, request);
-    ModuleString modules = derive(model, steps, derivation);
-    request.cancel.check();
-    ModuleString shown = applyHomomorphism(model.lsystem, modules, derivation);
+    Derived derivedModel = derived(model, request);
+    ModuleString shown = shownString(model, derivedModel, request);
+    derivedModel.modules = ModuleString{};
     // cpfg writes the text of @L("...") into its picture; graftal draws no text. Said once.
     if (hasLabels(shown)) addNote(result, request, model, "labels (@L) are not drawn");
-    Scene scene = sceneForRender(model, std::move(shown), request);
-    modules = ModuleString{};
-    const std::filesystem::path folder = sourceFolder(model, request);
-    if (!model.view.colorMap.empty()) scene.palette = loadColorMap(folder / model.view.colorMap);
+    Scene scene = drawn(model, std::move(shown), request);
 
     if (picture && scene.segments.empty() && scene.polygonCount() == 0 && scene.surfaces.empty() &&
         scene.discs.empty() && scene.spheres.empty()) {
@@ -336,7 +313,7 @@ RenderResult render(const Model& model, const RenderRequest& request) {
         // the picture the book draws for such systems.
         addNote(result, request, model, "the string draws nothing; drawing its derivation instead");
         warnLineArtIgnores(result, request, model, false);
-        renderDerivation(model, steps, request);
+        renderDerivation(model, steps, request, destination);
         result.route = RenderRoute::DerivationDiagram;
         return result;
     }
@@ -349,7 +326,7 @@ RenderResult render(const Model& model, const RenderRequest& request) {
         warnLineArtIgnores(result, request, model, scene.is3D);
         if (scene.is3D || !scene.discs.empty() || !scene.spheres.empty())
             scene = projectScene(scene, request.view.value_or(ViewDirection::Front));
-        writeImage(scene, lineArtOptions(model, request), output);
+        writeImage(scene, lineArtOptions(model, request), *format, destination);
         result.route = RenderRoute::LineArt;
         return result;
     }
@@ -366,47 +343,59 @@ RenderResult render(const Model& model, const RenderRequest& request) {
         warnIgnored(result, request, model,
                     "instancing and compression settings apply to .glb files only; ignored",
                     glbSettingsGiven(request));
-    // Uncoloured 3D plants are bark brown, not line art's ink, so their shading shows.
-    if (model.view.colorMap.empty()) scene.palette = defaultPalette3D();
-    if (!model.view.materialFile.empty())
-        scene.palette = materialPalette(loadMaterials(folder / model.view.materialFile));
-    SurfaceLibrary surfaces = surfacesFor(model.view, folder);
-    // cpfg draws nothing for a `~X` no `surface:` line declares: said, not an error.
-    for (const std::string& name : removeUnknownSurfaces(scene, surfaces))
-        warnAt(result, request, placedAt(model.lsystem, name),
-               "'~" + name + "' places surface '" + name +
-                   "', which no 'surface:' line declares: nothing is drawn for it (as in cpfg)");
-    MeshOptions mo;
-    // The view file's `cylinder sides:` unless --tube-sides was given.
-    mo.tubeSides = request.tubeSides != RenderRequest{}.tubeSides
-                       ? request.tubeSides
-                       : model.view.tubeSides.value_or(request.tubeSides);
-    mo.surfaceDivisions = request.surfaceDivisions;
-    mo.cylinders = model.view.lineStyle == LineStyle::Cylinders;
-    if (picture) setPictureRadii(mo, scene.bounds(), raytraceOptions(model.view, request));
-    const MeshScene mesh = buildMeshScene(scene, mo, &surfaces);
+    MeshSetup setup =
+        meshSetup(model, request, picture ? MeshPurpose::Picture : MeshPurpose::File);
+    if (picture) setPictureRadii(setup.options, scene.bounds(), raytraceOptions(model.view, request));
+    std::vector<Diagnostic> meshNotes;
+    const MeshScene mesh = meshed(model, std::move(scene), setup, meshNotes);
+    for (Diagnostic& d : meshNotes) {
+        if (request.notify) request.notify(d);
+        result.notes.push_back(std::move(d));
+    }
     scene = Scene{};  // the meshes hold everything now: its memory goes before the render
     request.cancel.check();
     result.route = RenderRoute::Mesh;
     switch (*format) {
-        case FileFormat::Obj:
-            writeObj(mesh, output);
+        case FileFormat::Obj: {
+            // The materials beside the OBJ: a file's .mtl, else a name the OBJ points to.
+            std::filesystem::path mtlName = destination.path();
+            mtlName.replace_extension(".mtl");
+            if (destination.kind() == Destination::Kind::File) {
+                if (mtlName == destination.path())
+                    throw fileError(destination.path(),
+                                    "cannot write OBJ: the materials go to '" + mtlName.string() +
+                                        "'; use the extension .obj");
+                writeObj(mesh, destination, Destination::file(mtlName));
+            } else {
+                writeObj(mesh, destination, Destination::memory(result.materials, mtlName));
+            }
             break;
+        }
         case FileFormat::Ply:
-            writePly(mesh, output);
+            writePly(mesh, destination);
             break;
         case FileFormat::Glb:
-            writeGlb(mesh, output, request.glb);
+            writeGlb(mesh, destination, request.glb);
             break;
         case FileFormat::Png:
         case FileFormat::Svg:
         case FileFormat::Pdf:
             // Only a 3D scene drawn as a PNG gets here: it is ray traced.
-            renderRaytraced(mesh, raytraceOptions(model.view, request), output);
+            destination.writeThroughFile("PNG", ".png", [&](const std::filesystem::path& file) {
+                renderRaytraced(mesh, raytraceOptions(model.view, request), file);
+            });
             result.route = RenderRoute::RayTraced;
             break;
     }
     return result;
+}
+
+RenderResult render(const Model& model, const RenderRequest& request) {
+    checkRenderRequest(request);
+    ExportRequest exportRequest;
+    static_cast<RenderRequest&>(exportRequest) = request;
+    const ExportResult exported = exportModel(model, Destination::file(request.output), exportRequest);
+    return RenderResult{exported.steps, exported.route, exported.notes, exported.materials};
 }
 
 }  // namespace graftal

@@ -19,7 +19,15 @@ int requestedSteps(const Model& model, const DeriveRequest& request) {
         d.fields = {"steps"};
         throw Error(std::move(d));
     }
-    return request.steps.value_or(model.lsystem.derivationLength);
+    const int steps = request.steps.value_or(model.lsystem.derivationLength);
+    if (request.maxSteps && steps > *request.maxSteps) {
+        Diagnostic d{Severity::Error, SourceLocation{model.lsystem.file, 0, 0},
+                     "derivation length " + std::to_string(steps) + " is over the limit of " +
+                         std::to_string(*request.maxSteps) + " steps"};
+        d.fields = {"steps"};
+        throw Error(std::move(d));
+    }
+    return steps;
 }
 
 DerivationOptions derivationOptions(const Model& model, const DeriveRequest& request) {

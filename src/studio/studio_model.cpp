@@ -1,6 +1,6 @@
-// The studio's computations, each through the library's own calls: parse(), the
-// pipeline's stream decision and derivation options, interpret(), buildMeshScene() and
-// render().
+// The studio's computations, each through the pipeline's stages (stages.hpp) and its
+// export registry (export.hpp): the studio turns a page's request into the pipeline's
+// request and the result into bytes for the page, and assembles nothing of its own.
 #include "studio/studio_model.hpp"
 
 #include <algorithm>
@@ -14,19 +14,15 @@
 #include <mutex>
 #include <sstream>
 
-#include "graftal/animation.hpp"
-#include "graftal/bspline.hpp"
-#include "graftal/color_map.hpp"
-#include "graftal/mesh.hpp"
-#include "graftal/mesh_scene.hpp"
-#include "graftal/music.hpp"
+#include "graftal/destination.hpp"
+#include "graftal/export.hpp"
+#include "graftal/map_lsystem.hpp"
 #include "graftal/output.hpp"
 #include "graftal/pipeline.hpp"
 #include "graftal/polyline_scene.hpp"
 #include "graftal/projection.hpp"
+#include "graftal/stages.hpp"
 #include "graftal/streamed_picture.hpp"
-#include "graftal/surface.hpp"
-#include "graftal/turtle.hpp"
 #include "lang/source_text.hpp"
 #include "studio/zip_archive.hpp"
 
@@ -41,31 +37,20 @@ double millisecondsSince(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-// A fresh file name in the scratch folder: requests run at the same time.
-fs::path scratchFile(const fs::path& scratch, const std::string& extension) {
-    static std::atomic<unsigned long> counter{0};
-    return scratch / ("s" + std::to_string(counter.fetch_add(1)) + "." + extension);
-}
-
-std::string readAndRemove(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream bytes;
-    bytes << in.rdbuf();
-    std::error_code ec;
-    fs::remove(path, ec);
-    return bytes.str();
-}
-
 Model parseOrThrow(const ModelInput& input) {
     ParseResult result = parseInput(input);
     if (!result.ok()) throw Error(result.errors());
     return std::move(result.model);
 }
 
-DeriveRequest deriveRequest(const ModelInput& input, const StudioLimits& limits,
-                            const CancellationToken& cancel) {
-    DeriveRequest request;
+// The pipeline's request for a page's model: its steps, the studio's limits, the model's
+// file for what it names (surfaces, colour maps).
+ExportRequest pipelineRequest(const ModelInput& input, const StudioLimits& limits,
+                              const CancellationToken& cancel) {
+    ExportRequest request;
     request.steps = input.steps;
+    request.maxSteps = limits.maxSteps;
+    request.sourceFile = input.file;
     request.memoryLimit = limits.memoryLimit;
     request.streamLimit = limits.streamLimit;
     request.cancel = cancel;
@@ -79,39 +64,9 @@ DeriveRequest deriveRequest(const ModelInput& input, const StudioLimits& limits,
     return request;
 }
 
-int checkedSteps(const Model& model, const DeriveRequest& request, const StudioLimits& limits) {
-    const int steps = requestedSteps(model, request);
-    if (steps > limits.maxSteps)
-        throw Error(SourceLocation{model.lsystem.file, 0, 0},
-                    "derivation length " + std::to_string(steps) +
-                        " is over the studio's limit of " + std::to_string(limits.maxSteps));
-    return steps;
-}
-
 nlohmann::json boundsJson(const Bounds& b) {
     if (b.empty()) return nullptr;
     return {{"min", {b.min.x, b.min.y, b.min.z}}, {"max", {b.max.x, b.max.y, b.max.z}}};
-}
-
-// Surfaces a file declares are read beside it; unknown files fall back to the built-ins
-// (as render() does).
-SurfaceLibrary surfacesFor(const ViewSettings& view, const fs::path& folder) {
-    SurfaceLibrary lib = SurfaceLibrary::builtin();
-    for (const auto& decl : view.surfaces) {
-        Surface s;
-        const fs::path path = folder / decl.file;
-        if (fs::exists(path)) {
-            s = loadSurface(path);
-        } else if (const Surface* builtin = lib.find(fs::path(decl.file).stem().string())) {
-            s = *builtin;
-        } else {
-            throw Error(decl.location, "surface file '" + decl.file + "' not found");
-        }
-        s.name = decl.name;
-        s.size *= decl.scale;
-        lib.add(std::move(s));
-    }
-    return lib;
 }
 
 // The turtle's polylines of earlier requests, kept with their memory: a keystroke then
@@ -132,17 +87,6 @@ void returnWorkspace(std::unique_ptr<PolylineScene> w) {
     w->rest = Scene{};
     std::lock_guard lock(workspaceMutex);
     if (workspaces.size() < kKept) workspaces.push_back(std::move(w));
-}
-
-// What interpret() draws of a derived (and homomorphism-applied) string, smoothed and
-// coloured as the view file says.
-Scene sceneOf(const Model& model, const ModuleString& modules) {
-    Scene scene = interpret(model, modules);
-    if (int n = model.view.splineSubdivisions; n > 0) scene = smoothSegments(scene, n);
-    if (!model.view.colorMap.empty())
-        scene.palette =
-            loadColorMap(fs::path(model.lsystem.file).parent_path() / model.view.colorMap);
-    return scene;
 }
 
 }  // namespace
@@ -166,6 +110,16 @@ ParseResult parseInput(const ModelInput& input) {
     ParseOptions options;
     options.fileName = input.file.string();
     options.defines = input.defines;
+    if (isMapLSystemText(input.text)) {
+        // A map L-system: its diagnostics, and a model that only names it (derivePicture
+        // derives the map itself).
+        MapParseResult map = parseMapLSystem(input.text, options);
+        ParseResult result;
+        result.diagnostics = std::move(map.diagnostics);
+        result.model.lsystem.file = input.file.string();
+        result.model.lsystem.derivationLength = map.system.derivationLength;
+        return result;
+    }
     if (input.viewFile.empty()) return parse(input.text, options);
     return parse(input.text, input.viewText, input.viewFile.string(), options);
 }
@@ -273,13 +227,46 @@ StudioPicture derivePicture(const ModelInput& input, const StudioLimits& limits,
     return derivePicture(input, parseOrThrow(input), limits, cancel, scratch);
 }
 
+namespace {
+
+// A map L-system's cell layer (LSFP ch. 5) as the page draws it: its walls as lines.
+StudioPicture deriveMapPicture(const ModelInput& input, StudioPicture picture) {
+    const ExportRequest& request = picture.request;
+    ParseOptions options;
+    options.fileName = input.file.string();
+    options.defines = input.defines;
+    const MapLSystem system = parseMapLSystem(input.text, options).orThrow();
+    const auto start = Clock::now();
+    const DerivedMap map = derivedMap(system, request.steps, request.map, request.cancel);
+    picture.steps = map.map.step;
+    Scene scene = drawnMap(map, request.map);
+    const double deriveMs = millisecondsSince(start);
+    picture.segments = scene.segments.size();
+    picture.stats = {{"steps", picture.steps},
+                     {"modules", map.map.cellCount()},
+                     {"segments", scene.segments.size()},
+                     {"polygons", scene.polygonCount()},
+                     {"bbox", boundsJson(scene.bounds())},
+                     {"is3D", false},
+                     {"deriveMs", deriveMs},
+                     {"drawMs", 0.0},
+                     {"summarised", false}};
+    picture.lines = encodeLines(scene);
+    picture.mapScene = std::move(scene);
+    return picture;
+}
+
+}  // namespace
+
 StudioPicture derivePicture(const ModelInput& input, Model parsed, const StudioLimits& limits,
-                            const CancellationToken& cancel, const fs::path& scratch) {
+                            const CancellationToken& cancel, const fs::path& /*scratch*/) {
     StudioPicture picture;
     picture.model = std::move(parsed);
+    picture.request = pipelineRequest(input, limits, cancel);
+    const ExportRequest& request = picture.request;
+    if (isMapLSystemText(input.text)) return deriveMapPicture(input, std::move(picture));
     const Model& model = picture.model;
-    const DeriveRequest request = deriveRequest(input, limits, cancel);
-    picture.steps = checkedSteps(model, request, limits);
+    picture.steps = requestedSteps(model, request);
     const int steps = picture.steps;
     const auto start = Clock::now();
 
@@ -287,13 +274,9 @@ StudioPicture derivePicture(const ModelInput& input, Model parsed, const StudioL
     const bool pixelBound = streamedPictureIsSummarised(model, steps, request.memoryLimit);
     if (shouldStream(model, steps, request, true, true, pixelBound, notes)) {
         // Too large to hold: the streamed picture render() draws, as a PNG.
-        RenderRequest render;
-        static_cast<DeriveRequest&>(render) = request;
-        render.steps = steps;
-        render.output = scratchFile(scratch, "png");
-        render.sourceFile = input.file;
-        graftal::render(model, render);
-        picture.summaryPng = readAndRemove(render.output);
+        ExportRequest png = request;
+        png.format = "png";
+        exportModel(model, Destination::memory(picture.summaryPng, "picture.png"), png);
         for (const Diagnostic& d : notes) picture.notes.push_back(d.message);
         picture.notes.push_back("the string is too large to draw here: a summarised picture");
         picture.stats = {
@@ -301,34 +284,19 @@ StudioPicture derivePicture(const ModelInput& input, Model parsed, const StudioL
         return picture;
     }
 
-    const DerivationOptions options = derivationOptions(model, request);
-    ModuleString modules = derive(model, steps, options);
+    Derived derivedModel = derived(model, request);
     const double deriveMs = millisecondsSince(start);
-    cancel.check();
+    const ModuleString& modules = derivedModel.modules;
     for (std::size_t i = 0; i < modules.size() && i < limits.stringHeadModules; ++i)
         appendModuleText(picture.stringHead, model.lsystem.symbols, modules.symbol(i),
                          modules.params(i));
-    const std::size_t moduleCount = modules.size();
-
-    if (!model.lsystem.homomorphism.empty())
-        modules = applyHomomorphism(model.lsystem, modules, options);
-    cancel.check();
+    ModuleString shown = shownString(model, derivedModel, request);
 
     // The turtle writes polylines into a workspace of an earlier request (no Scene of 88
-    // bytes a segment, no fresh pages); a smoothed model needs the scene's segments.
+    // bytes a segment, no fresh pages); a smoothed model is drawn as its scene.
     const auto drawStart = Clock::now();
     std::unique_ptr<PolylineScene> lines = takeWorkspace();
-    if (model.view.splineSubdivisions > 0) {
-        const Scene scene = sceneOf(model, modules);
-        lines->clear();
-        lines->rest = scene;  // the summary and the stats read it; encoded as a scene
-        lines->segments = scene.segments.size();
-        lines->segmentBounds = scene.bounds();
-    } else {
-        interpretPolylines(model, modules, *lines);
-        if (!model.view.colorMap.empty())
-            lines->rest.palette = loadColorMap(input.file.parent_path() / model.view.colorMap);
-    }
+    drawnLines(model, shown, request, *lines);
     const double drawMs = millisecondsSince(drawStart);
     cancel.check();
     const Scene& rest = lines->rest;
@@ -337,7 +305,7 @@ StudioPicture derivePicture(const ModelInput& input, Model parsed, const StudioL
     const std::size_t organs =
         rest.polygonCount() + rest.surfaces.size() + rest.discs.size() + rest.spheres.size();
     picture.stats = {{"steps", steps},
-                     {"modules", moduleCount},
+                     {"modules", derivedModel.moduleCount},
                      {"segments", lines->segments},
                      {"polygons", organs},
                      {"bbox", boundsJson(lines->bounds())},
@@ -347,12 +315,11 @@ StudioPicture derivePicture(const ModelInput& input, Model parsed, const StudioL
                      {"summarised", false}};
     if (lines->segments > limits.segmentBudget) {
         // Over the budget the browser gets a picture, not the segments.
-        const Scene scene = sceneOf(model, modules);
+        const Scene scene = drawn(model, shown, request);
         RenderOptions render;
         if (model.view.background) render.background = *model.view.background;
-        const fs::path png = scratchFile(scratch, "png");
-        writeImage(scene.is3D ? projectScene(scene, ViewDirection::Front) : scene, render, png);
-        picture.summaryPng = readAndRemove(png);
+        writeImage(scene.is3D ? projectScene(scene, ViewDirection::Front) : scene, render,
+                   ImageFormat::Png, Destination::memory(picture.summaryPng, "picture.png"));
         picture.notes.push_back(std::to_string(scene.segments.size()) +
                                 " segments are over the studio's budget of " +
                                 std::to_string(limits.segmentBudget) + ": a summarised picture");
@@ -364,108 +331,84 @@ StudioPicture derivePicture(const ModelInput& input, Model parsed, const StudioL
     picture.lines = rest.segments.empty() ? encodeLines(*lines) : encodeLines(rest);
     picture.stats["encodeMs"] = millisecondsSince(encodeStart);
     returnWorkspace(std::move(lines));
-    picture.modules = std::move(modules);
+    picture.modules = std::move(shown);
     return picture;
 }
 
 Scene pictureScene(const StudioPicture& picture) {
-    return sceneOf(picture.model, picture.modules);
+    if (picture.mapScene) return *picture.mapScene;
+    return drawn(picture.model, picture.modules, picture.request);
 }
 
-std::string meshGlb(const StudioPicture& picture, const fs::path& scratch) {
-    Scene scene = pictureScene(picture);
-    if (picture.model.view.colorMap.empty()) scene.palette = defaultPalette3D();
-    const SurfaceLibrary surfaces =
-        surfacesFor(picture.model.view, fs::path(picture.model.lsystem.file).parent_path());
-    MeshOptions options;
-    options.tubeSides = 6;
-    // Stems thinner than about a pixel of an 800-pixel view are widened so that they show.
-    if (const Bounds b = scene.bounds(); !b.empty()) {
-        const double extent = std::max({b.max.x - b.min.x, b.max.y - b.min.y, b.max.z - b.min.z});
-        options.minimumRadius = 0.5 * extent / 500.0;
-    }
+std::string meshGlb(const StudioPicture& picture, const fs::path& /*scratch*/) {
+    const MeshSetup setup = meshSetup(picture.model, picture.request, MeshPurpose::Viewer);
+    std::vector<Diagnostic> notes;
+    const MeshScene mesh = meshed(picture.model, pictureScene(picture), setup, notes);
     // Repeated organs (leaves, flowers) once each, placed by EXT_mesh_gpu_instancing, the
     // buffers compressed by EXT_meshopt_compression: the page's loader reads both.
-    options.instancing = true;
-    const MeshScene mesh = buildMeshScene(scene, options, &surfaces);
-    const fs::path glb = scratchFile(scratch, "glb");
-    writeGlb(mesh, glb, GlbOptions{.instancing = true, .compression = true});
-    return readAndRemove(glb);
+    std::string glb;
+    writeGlb(mesh, Destination::memory(glb, "view.glb"),
+             GlbOptions{.instancing = true, .compression = true});
+    return glb;
 }
 
 const std::vector<std::string>& exportFormats() {
-    static const std::vector<std::string> formats = {"png", "svg",      "pdf",  "glb", "obj",
-                                                     "ply", "gif",      "webp", "mp4", "mid",
-                                                     "wav", "musicxml", "ly"};
+    // The registry's formats that a download can hold (not a folder of frames), but the
+    // engraved scores, which need LilyPond and take seconds.
+    static const std::vector<std::string> formats = [] {
+        std::vector<std::string> names;
+        for (const ExportFormat& f : graftal::exportFormats())
+            if (!f.fileOnly && f.name.find('-') == std::string_view::npos)
+                names.emplace_back(f.name);
+        return names;
+    }();
     return formats;
 }
 
 ExportedFile exportFile(const ModelInput& input, const std::string& format,
                         const StudioLimits& limits, const CancellationToken& cancel,
-                        const fs::path& scratch) {
+                        const fs::path& /*scratch*/) {
     const auto& formats = exportFormats();
     if (std::find(formats.begin(), formats.end(), format) == formats.end())
         throw Error(SourceLocation{"studio", 0, 0}, "unknown export format '" + format + "'");
     const Model model = parseOrThrow(input);
     const std::string stem = input.file.stem().string();
-    const fs::path output = scratchFile(scratch, format);
-    const DeriveRequest derive = deriveRequest(input, limits, cancel);
-    const int steps = checkedSteps(model, derive, limits);
-
-    auto oneOf = [&](std::initializer_list<const char*> list) {
-        return std::any_of(list.begin(), list.end(), [&](const char* f) { return format == f; });
-    };
-    if (oneOf({"gif", "webp", "mp4"})) {
-        // graftal animate: every step from 0 to the slider's, one fixed camera.
-        AnimationRequest request;
-        static_cast<DeriveRequest&>(request) = derive;
-        request.steps = steps;
-        request.output = output;
-        request.sourceFile = input.file;
-        checkAnimationRequest(request);
-        writeAnimationFile(model, request);
-        return {stem + "." + format, readAndRemove(output)};
+    const ExportFormat* entry = findExportFormat(format);
+    ExportRequest request = pipelineRequest(input, limits, cancel);
+    request.format = format;
+    // An animation is every step from 0 to the slider's, one fixed camera.
+    const std::string name = stem + std::string(entry->extension);
+    ExportedFile file{name, {}};
+    const Destination memory = Destination::memory(file.bytes, name);
+    if (isMapLSystemText(input.text)) {
+        ParseOptions options;
+        options.fileName = input.file.string();
+        options.defines = input.defines;
+        exportMap(parseMapLSystem(input.text, options).orThrow(), memory, request);
+        return file;
     }
-    if (oneOf({"mid", "wav", "musicxml", "ly"})) {  // not png, svg, pdf: those are pictures
-        // graftal music: the curve at the slider's step, the file's `music` settings.
-        const Score score = scoreFromModel(model, steps, musicOptions(model.view),
-                                           derivationOptions(model, derive));
-        cancel.check();
-        writeScore(score, output);
-        return {stem + "." + format, readAndRemove(output)};
-    }
-    RenderRequest request;
-    static_cast<DeriveRequest&>(request) = derive;
-    request.output = output;
-    request.sourceFile = input.file;
-    checkRenderRequest(request);
-    render(model, request);
-    if (format != "obj") return {stem + "." + format, readAndRemove(output)};
-    // The OBJ names its material library by file name: both go in one archive, renamed
-    // after the model, so that they unpack side by side.
-    std::string obj = readAndRemove(output);
-    const std::string mtl = readAndRemove(fs::path(output).replace_extension(".mtl"));
-    const std::string scratchName = "mtllib " + output.stem().string() + ".mtl";
-    if (const auto at = obj.find(scratchName); at != std::string::npos)
-        obj.replace(at, scratchName.size(), "mtllib " + stem + ".mtl");
-    return {stem + "-obj.zip", storedZip({{stem + ".obj", obj}, {stem + ".mtl", mtl}})};
+    const ExportResult result = exportModel(model, memory, request);
+    if (format != "obj") return file;
+    // The OBJ names its materials by file name: both go in one archive, named after the
+    // model, so that they unpack side by side.
+    return {stem + "-obj.zip",
+            storedZip({{stem + ".obj", file.bytes}, {stem + ".mtl", result.materials}})};
 }
 
 std::string thumbnailPng(const fs::path& file, const fs::path& viewFile, int size,
-                         const StudioLimits& limits, const fs::path& scratch) {
+                         const StudioLimits& limits, const fs::path& /*scratch*/) {
     ParseOptions options;
     options.viewFile = viewFile.string();
     ParseResult parsed = loadModel(file, options);
     if (!parsed.ok()) throw Error(parsed.errors());
-    RenderRequest request;
-    static_cast<DeriveRequest&>(request) =
-        deriveRequest(ModelInput{{}, file, std::nullopt, {}, {}, {}}, limits, CancellationToken{});
-    checkedSteps(parsed.model, request, limits);
-    request.output = scratchFile(scratch, "png");
+    ExportRequest request =
+        pipelineRequest(ModelInput{{}, file, std::nullopt, {}, {}, {}}, limits, CancellationToken{});
+    request.format = "png";
     request.picture.width = request.picture.height = size;
     request.samplesPerPixel = 1;
-    render(parsed.model, request);
-    return readAndRemove(request.output);
+    std::string png;
+    exportModel(parsed.model, Destination::memory(png, "thumbnail.png"), request);
+    return png;
 }
 
 }  // namespace graftal::studio

@@ -14,6 +14,7 @@
 
 #include "graftal/cancellation.hpp"
 #include "graftal/diagnostics.hpp"
+#include "graftal/export.hpp"
 #include "graftal/model.hpp"
 #include "graftal/module_string.hpp"
 #include "graftal/scene.hpp"
@@ -93,6 +94,9 @@ struct StudioPicture {
     std::vector<std::string> notes;
     nlohmann::json stats;  // modules, segments, polygons, bbox, deriveMs, drawMs, is3D, encodeMs
     std::string lines;     // the line buffer, made once and sent again while unchanged
+    ExportRequest request;  // the pipeline's request it was made with
+    // A map L-system's drawn cell layer (its walls), kept whole: a map has no string.
+    std::optional<Scene> mapScene;
 };
 
 // Parses, derives, interprets and encodes the line buffer. Throws Error (with every parse

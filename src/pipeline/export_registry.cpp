@@ -1,0 +1,257 @@
+// The export registry (export.hpp): one table of every format graftal writes, each row with
+// the one function that writes it to a destination.
+#include "graftal/export.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
+#include "graftal/atomic_file.hpp"
+#include "graftal/output.hpp"
+
+namespace graftal {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+Error requestError(const std::string& message, const char* field = nullptr) {
+    Diagnostic d{Severity::Error, SourceLocation{"graftal", 0, 0}, message};
+    if (field) d.fields = {field};
+    return Error(std::move(d));
+}
+
+ExportResult fromRender(RenderResult r) {
+    return ExportResult{r.steps, r.route, std::move(r.notes), std::move(r.materials)};
+}
+
+template <FileFormat F>
+ExportResult writeRendered(const Model& model, const ExportRequest& request,
+                           const Destination& destination) {
+    RenderRequest render = request;
+    // The checks read the format from the output's name; a stream or memory may have none.
+    render.output = destination.kind() == Destination::Kind::File
+                        ? destination.path()
+                        : fs::path("output" + std::string(fileFormatInfo(F).extension));
+    // The checks that need no derivation (a view or a diagram asks for a picture).
+    checkRenderRequest(render);
+    return fromRender(renderTo(model, render, F, destination));
+}
+
+// The frames go through the animation encoders, which write named files.
+ExportResult writeAnimated(const Model& model, const ExportRequest& request,
+                           const Destination& destination, std::string_view extension) {
+    AnimationRequest animation = request;
+    ExportResult result;
+    destination.writeThroughFile(
+        "animation", std::string(extension), [&](const fs::path& file) {
+            animation.output = file;
+            checkAnimationRequest(animation);
+            const AnimationResult a = writeAnimationFile(model, animation);
+            result.steps = a.to;
+            result.route = a.route;
+            result.notes = a.notes;
+        });
+    return result;
+}
+
+template <std::size_t N>
+struct Extension {
+    char text[N];
+    constexpr Extension(const char (&s)[N]) { std::copy_n(s, N, text); }
+};
+
+template <Extension E>
+ExportResult writeAnimation(const Model& model, const ExportRequest& request,
+                            const Destination& destination) {
+    return writeAnimated(model, request, destination, E.text);
+}
+
+// A folder of PNG frames: only a folder on disk can hold it.
+ExportResult writeFrames(const Model& model, const ExportRequest& request,
+                         const Destination& destination) {
+    if (destination.kind() != Destination::Kind::File)
+        throw requestError("a folder of PNG frames can only be written to a folder on disk; "
+                           "use .gif, .webp or .mp4");
+    AnimationRequest animation = request;
+    animation.output = destination.path();
+    checkAnimationRequest(animation);
+    const AnimationResult a = writeAnimationFile(model, animation);
+    return ExportResult{a.to, a.route, a.notes, {}};
+}
+
+// The curve the turtle draws, read as a score (LSFP ch. 6.3).
+Score scored(const Model& model, const ExportRequest& request) {
+    RenderRequest draw = request;
+    draw.spline = 0;  // the notes are the turtle's own segments
+    draw.kolamDots = false;
+    Derived d = derived(model, request);
+    const Scene scene = drawn(model, shownString(model, d, request), draw);
+    if (scene.is3D)
+        throw Error(SourceLocation{model.lsystem.file, 0, 0},
+                    "the curve leaves the plane; fractal music reads 2D curves");
+    try {
+        Score score = scoreFromScene(scene, model.view.stepLength,
+                                     request.music.value_or(musicOptions(model.view)));
+        score.title = fs::path(model.lsystem.file).stem().string();
+        return score;
+    } catch (const Error& e) {
+        throw Error(SourceLocation{model.lsystem.file, 0, 0}, e.messages());
+    }
+}
+
+template <Extension E>
+ExportResult writeMusic(const Model& model, const ExportRequest& request,
+                        const Destination& destination) {
+    const Score score = scored(model, request);
+    request.cancel.check();
+    destination.writeThroughFile("score", E.text, [&](const fs::path& file) {
+        writeScore(score, file, request.audio);
+    });
+    return ExportResult{requestedSteps(model, request), RenderRoute::LineArt, {}, {}};
+}
+
+constexpr ExportFormat kFormats[] = {
+    {"svg", ".svg", ExportKind::Picture, "line art (SVG)", false, false, true,
+     writeRendered<FileFormat::Svg>},
+    {"png", ".png", ExportKind::Picture, "a picture: line art, or ray traced for 3D", true, false,
+     true, writeRendered<FileFormat::Png>},
+    {"pdf", ".pdf", ExportKind::Picture, "line art (PDF)", true, false, true,
+     writeRendered<FileFormat::Pdf>},
+    {"obj", ".obj", ExportKind::Mesh, "Wavefront OBJ with its .mtl materials", false, false, false,
+     writeRendered<FileFormat::Obj>},
+    {"ply", ".ply", ExportKind::Mesh, "binary PLY with vertex colours", true, false, false,
+     writeRendered<FileFormat::Ply>},
+    {"glb", ".glb", ExportKind::Mesh, "glTF 2.0 binary, repeated organs instanced", true, false,
+     false, writeRendered<FileFormat::Glb>},
+    {"gif", ".gif", ExportKind::Animation, "animated GIF", true, false, false,
+     writeAnimation<".gif">},
+    {"webp", ".webp", ExportKind::Animation, "animated WebP", true, false, false,
+     writeAnimation<".webp">},
+    {"mp4", ".mp4", ExportKind::Animation, "H.264 video", true, false, false,
+     writeAnimation<".mp4">},
+    {"frames", "", ExportKind::Animation, "a folder of PNG frames", true, true, false,
+     writeFrames},
+    {"mid", ".mid", ExportKind::Music, "Standard MIDI File", true, false, false,
+     writeMusic<".mid">},
+    {"wav", ".wav", ExportKind::Music, "audio played by FluidSynth", true, false, false,
+     writeMusic<".wav">},
+    {"musicxml", ".musicxml", ExportKind::Music, "MusicXML notation", false, false, false,
+     writeMusic<".musicxml">},
+    {"ly", ".ly", ExportKind::Music, "LilyPond source", false, false, false, writeMusic<".ly">},
+    {"score-pdf", ".pdf", ExportKind::Music, "the score engraved by LilyPond (PDF)", true, false,
+     false, writeMusic<".pdf">},
+    {"score-png", ".png", ExportKind::Music, "the score engraved by LilyPond (PNG)", true, false,
+     false, writeMusic<".png">},
+    {"score-svg", ".svg", ExportKind::Music, "the score engraved by LilyPond (SVG)", false, false,
+     false, writeMusic<".svg">},
+};
+
+std::string lowered(std::string_view text) {
+    std::string s(text);
+    std::transform(s.begin(), s.end(), s.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return s;
+}
+
+std::string_view kindName(ExportKind kind) {
+    switch (kind) {
+        case ExportKind::Picture:
+            return "picture";
+        case ExportKind::Mesh:
+            return "3D file";
+        case ExportKind::Animation:
+            return "animation";
+        case ExportKind::Music:
+            return "music file";
+    }
+    return "file";
+}
+
+}  // namespace
+
+std::span<const ExportFormat> exportFormats() {
+    return kFormats;
+}
+
+const ExportFormat* findExportFormat(std::string_view nameOrExtension,
+                                     std::optional<ExportKind> kind) {
+    const std::string key = lowered(nameOrExtension);
+    if (key.empty()) return nullptr;
+    const std::string dotted = key.front() == '.' ? key : "." + key;
+    // Alternative spellings of a few extensions.
+    const std::string extension = dotted == ".midi" ? ".mid" : dotted == ".xml" ? ".musicxml" : dotted;
+    for (const ExportFormat& f : kFormats)
+        if ((!kind || f.kind == *kind) && (f.name == key || f.extension == extension)) return &f;
+    return nullptr;
+}
+
+std::string exportFormatList(std::optional<ExportKind> kind, std::string_view separator,
+                             std::string_view last) {
+    std::vector<std::string> names;
+    for (const ExportFormat& f : kFormats)
+        if (!kind || f.kind == *kind)
+            names.push_back(f.extension.empty() ? std::string("a folder") : std::string(f.extension));
+    std::string list;
+    for (std::size_t i = 0; i < names.size(); ++i) {
+        if (i > 0) list += i + 1 == names.size() ? last : separator;
+        list += names[i];
+    }
+    return list;
+}
+
+const ExportFormat& exportFormatFor(const ExportRequest& request, const Destination& destination,
+                                    std::optional<ExportKind> kind) {
+    if (!request.format.empty()) {
+        if (const ExportFormat* f = findExportFormat(request.format, kind)) return *f;
+        throw requestError("unknown format '" + request.format + "' (use " +
+                               exportFormatList(kind) + ")",
+                           "format");
+    }
+    const fs::path& path = destination.path();
+    const std::string extension = path.extension().string();
+    // A name without an extension, or ending in '/', is a folder of frames.
+    if ((extension.empty() || path.filename().empty()) &&
+        (!kind || *kind == ExportKind::Animation) && destination.kind() == Destination::Kind::File)
+        if (const ExportFormat* f = findExportFormat("frames", kind)) return *f;
+    if (!extension.empty())
+        if (const ExportFormat* f = findExportFormat(extension, kind)) return *f;
+    throw requestError(path.string() + ": unknown " +
+                           std::string(kind ? kindName(*kind) : "file") + " format (use " +
+                           exportFormatList(kind) + ")",
+                       "format");
+}
+
+ExportResult exportModel(const Model& model, const Destination& destination,
+                         const ExportRequest& request) {
+    const ExportFormat& format = exportFormatFor(request, destination);
+    if (format.fileOnly && destination.kind() != Destination::Kind::File)
+        throw requestError(std::string(format.description) + " can only be written to disk");
+    return format.write(model, request, destination);
+}
+
+ExportResult exportMap(const MapLSystem& system, const Destination& destination,
+                       const ExportRequest& request) {
+    const ExportFormat& format = exportFormatFor(request, destination);
+    if (!format.drawsMaps)
+        throw requestError("a map L-system is drawn as a picture (" +
+                           exportFormatList(ExportKind::Picture) + "), not as " +
+                           std::string(format.description));
+    if (request.view || request.derivationDiagram)
+        throw requestError("a view direction or a derivation diagram does not apply to a map "
+                           "L-system",
+                           request.view ? "view" : "derivationDiagram");
+    const DerivedMap map = derivedMap(system, request.steps, request.map, request.cancel);
+    request.cancel.check();
+    Scene scene = drawnMap(map, request.map);
+    RenderOptions options = request.picture;
+    if (options.lineColor) scene.palette[0] = *options.lineColor, options.lineColor.reset();
+    if (request.background) options.background = *request.background;
+    const FileFormat picture = format.name == "svg"   ? FileFormat::Svg
+                               : format.name == "png" ? FileFormat::Png
+                                                      : FileFormat::Pdf;
+    writeImage(scene, options, picture, destination);
+    return ExportResult{map.map.step, RenderRoute::LineArt, {}, {}};
+}
+
+}  // namespace graftal
