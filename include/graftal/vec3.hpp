@@ -1,8 +1,10 @@
 // The one 3D vector of graftal, with its arithmetic: the turtle, the meshes, the writers
-// and the ray tracer all compute with it.
+// and the ray tracer all compute with it. Angles are given in degrees and turned into
+// radians by radians().
 #pragma once
 
 #include <cmath>
+#include <numbers>
 #include <ostream>
 
 namespace graftal {
@@ -80,6 +82,13 @@ inline Vec3 perpendicularPart(const Vec3& v, const Vec3& d) {
     const Vec3 p = v - dot(v, d) * d;
     if (length(p) <= 1e-9 * length(v)) return anyPerpendicular(d);
     return normalizedOr(p, anyPerpendicular(d));
+}
+
+// An angle in degrees in radians, computed as degrees * π / 180 in that order: every turn
+// graftal makes has always been computed so, and the pictures must not move in their last
+// bit.
+inline double radians(double degrees) {
+    return degrees * std::numbers::pi / 180.0;
 }
 
 // Where the turtle is when it reaches a module, and which way it faces (H x L = U).

@@ -3,7 +3,9 @@
 // result is the same for any number of threads and for streamed derivations.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
+#include <numbers>
 
 namespace graftal {
 
@@ -26,6 +28,17 @@ inline double uniformAt(std::uint64_t seed, std::uint64_t step, std::uint64_t po
     h = mix64(h ^ position);
     h = mix64(h ^ (draw * 0x8cb92ba72f3d8dd7ULL));
     return unitDouble(h);
+}
+
+// A standard normal deviate (Box–Muller) from two uniform numbers in [0, 1), drawn from
+// `uniform` in this order. A first draw of 0 is taken as 1e-300, where the logarithm is
+// finite.
+template <class Uniform>
+double normalDeviate(Uniform&& uniform) {
+    double u1 = uniform();
+    const double u2 = uniform();
+    if (u1 < 1e-300) u1 = 1e-300;
+    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2 * std::numbers::pi * u2);
 }
 
 }  // namespace graftal

@@ -1,6 +1,7 @@
 // The cross-section points of a contour (see graftal/contour.hpp).
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "graftal/contour.hpp"
 
@@ -8,7 +9,6 @@ namespace graftal {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kSamplesPerSpan = 10;  // cpfg measures a contour's length at 10 points per span
 
 // The uniform cubic B-spline over `p` at parameter t in [0, spans]: span i is shaped by
@@ -31,7 +31,7 @@ std::vector<Vec3> circleContourPoints(int sides) {
     std::vector<Vec3> out;
     out.reserve(sides + 1);
     for (int i = 0; i < sides; ++i) {
-        double a = 2 * kPi * i / sides;
+        double a = 2 * std::numbers::pi * i / sides;
         out.push_back({std::cos(a), std::sin(a), 0});
     }
     out.push_back(out.front());

@@ -1,13 +1,12 @@
 // The pulli of a kolam: the centres of the loops of the turtle's path (see kolam.hpp).
 #include <cmath>
+#include <numbers>
 
 #include "graftal/kolam.hpp"
 
 namespace graftal {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // The signed turn (radians, left positive) from the direction of u to the direction of v,
 // in the xy plane.
@@ -33,7 +32,7 @@ void loopsOfRun(const std::vector<Segment>& segs, std::size_t first, std::size_t
     double total = 0;
     int side = 0;
     auto finish = [&](std::size_t end) {  // the stretch is segments start..end
-        if (std::abs(total) < kPi - 1e-6) return;
+        if (std::abs(total) < std::numbers::pi - 1e-6) return;
         std::vector<Vec3> corners;
         corners.push_back(segs[start].a);
         for (std::size_t s = start; s <= end; ++s) {

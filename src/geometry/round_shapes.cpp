@@ -2,14 +2,11 @@
 #include "round_shapes.hpp"
 
 #include <cmath>
+#include <numbers>
 
 #include "graftal/vec3.hpp"
 
 namespace graftal {
-
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-}
 
 std::vector<Vec3> discOutline(const Disc& d, int sides) {
     const Vec3 n = normalizedOr(d.normal, {0, 0, 1});
@@ -19,7 +16,7 @@ std::vector<Vec3> discOutline(const Disc& d, int sides) {
     out.reserve(static_cast<std::size_t>(sides));
     // Counter-clockwise seen from the side the normal points to (u x v = n).
     for (int i = 0; i < sides; ++i) {
-        const double a = 2 * kPi * i / sides;
+        const double a = 2 * std::numbers::pi * i / sides;
         out.push_back(c + u * (d.radius * std::cos(a)) + v * (d.radius * std::sin(a)));
     }
     return out;
@@ -71,9 +68,9 @@ void appendBall(const Vec3& c, double radius, int sides, std::uint16_t color, Me
     // Rings from the south pole (-z) to the north pole, each with sides + 1 vertices (the
     // seam repeated) so that every quad has its own four corners.
     for (int i = 0; i <= r; ++i) {
-        const double theta = kPi * i / r - kPi / 2;
+        const double theta = std::numbers::pi * i / r - std::numbers::pi / 2;
         for (int j = 0; j <= sides; ++j) {
-            const double phi = 2 * kPi * j / sides;
+            const double phi = 2 * std::numbers::pi * j / sides;
             const Vec3 n{std::cos(theta) * std::cos(phi), std::cos(theta) * std::sin(phi),
                          std::sin(theta)};
             mesh.positions.push_back(toVec3f(c + n * radius));
@@ -112,7 +109,7 @@ Mesh unitDisc(int sides, std::uint16_t color) {
     Mesh mesh;
     std::vector<Vec3> outline;
     for (int i = 0; i < sides; ++i) {
-        const double a = 2 * kPi * i / sides;
+        const double a = 2 * std::numbers::pi * i / sides;
         outline.push_back({std::cos(a), std::sin(a), 0});
     }
     appendDiscFan({0, 0, 0}, outline, {0, 0, 1}, color, mesh);

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <fstream>
 #include <memory>
+#include <numbers>
 #include <sstream>
 
 #include "graftal/derivation_diagram.hpp"
@@ -65,10 +66,10 @@ void showText(cairo_t* cr, const std::string& text, double x, double baseline, d
 void roundedBox(cairo_t* cr, const DiagramCell& c) {
     const double r = std::min(kCornerRadius * c.height, c.width / 2);
     cairo_new_sub_path(cr);
-    cairo_arc(cr, c.x + c.width - r, c.y + r, r, -M_PI / 2, 0);
-    cairo_arc(cr, c.x + c.width - r, c.y + c.height - r, r, 0, M_PI / 2);
-    cairo_arc(cr, c.x + r, c.y + c.height - r, r, M_PI / 2, M_PI);
-    cairo_arc(cr, c.x + r, c.y + r, r, M_PI, 3 * M_PI / 2);
+    cairo_arc(cr, c.x + c.width - r, c.y + r, r, -std::numbers::pi / 2, 0);
+    cairo_arc(cr, c.x + c.width - r, c.y + c.height - r, r, 0, std::numbers::pi / 2);
+    cairo_arc(cr, c.x + r, c.y + c.height - r, r, std::numbers::pi / 2, std::numbers::pi);
+    cairo_arc(cr, c.x + r, c.y + r, r, std::numbers::pi, 3 * std::numbers::pi / 2);
     cairo_close_path(cr);
 }
 

@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 
 #include "graftal/diagnostics.hpp"
 #include "graftal/framed_picture.hpp"
@@ -27,7 +26,7 @@ constexpr double kFrameElevationDegrees = 20;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 double tanHalfVertical(const Camera& c) {
-    return std::tan(c.fieldOfView * std::numbers::pi / 360);
+    return std::tan(radians(c.fieldOfView / 2));
 }
 
 // A unit vector perpendicular to `up` pointing out of the picture towards the viewer: +z
@@ -151,7 +150,7 @@ Camera frameCamera(const Camera& c, const PointSource& points, int width, int he
     }
 
     const Vec3 worldUp = unitOrZero(c.up);
-    const double elevation = kFrameElevationDegrees * std::numbers::pi / 180;
+    const double elevation = radians(kFrameElevationDegrees);
     const Vec3 towardsEye =
         frontDirection(worldUp) * std::cos(elevation) + worldUp * std::sin(elevation);
     const Axes a = directionOnly ? axesLookingAlong(*c.target - *c.viewpoint, worldUp)

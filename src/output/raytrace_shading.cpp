@@ -120,7 +120,7 @@ class Tracer {
           sunStrata_(options.samplesPerPixel),
           skyStrata_(options.samplesPerPixel * std::max(options.lighting.skyRays, 1)) {
         sun_ = unitOrZero(options.lighting.sunDirection);
-        sunCosRadius_ = std::cos(options.lighting.sunDiameterDegrees * std::numbers::pi / 360);
+        sunCosRadius_ = std::cos(radians(options.lighting.sunDiameterDegrees / 2));
         up_ = unitOrZero(options.camera.up);
         background_ = {srgbToLinear(options.background.r), srgbToLinear(options.background.g),
                        srgbToLinear(options.background.b)};

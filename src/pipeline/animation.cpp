@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <future>
-#include <numbers>
 #include <string>
 
 #include "core/parallel.hpp"
@@ -58,7 +57,7 @@ bool drawsNothing(const Scene& s) {
 // turntable, as if the camera walked around the plant.
 Scene turnedScene(Scene scene, const Vec3& centre, double degrees) {
     if (degrees == 0) return scene;
-    const double a = degrees * std::numbers::pi / 180, c = std::cos(a), s = std::sin(a);
+    const double a = radians(degrees), c = std::cos(a), s = std::sin(a);
     auto point = [&](Vec3& p) {
         const double x = p.x - centre.x, z = p.z - centre.z;
         p.x = centre.x + c * x + s * z;
@@ -122,7 +121,7 @@ Bounds turntableBounds(const Bounds& b, const Vec3& centre) {
 
 Vec3 rotatedAbout(const Vec3& p, const Vec3& centre, Vec3 axis, double degrees) {
     axis = unitOrZero(axis);
-    const double a = degrees * std::numbers::pi / 180;
+    const double a = radians(degrees);
     const Vec3 v = p - centre;
     return centre + v * std::cos(a) + cross(axis, v) * std::sin(a) +
            axis * (dot(axis, v) * (1 - std::cos(a)));

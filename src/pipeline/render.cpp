@@ -81,7 +81,7 @@ RaytraceOptions raytraceOptions(const ViewSettings& v, const RenderRequest& requ
         Vec3 d{0, 0, -1};
         if (r.camera.viewpoint && r.camera.target)
             d = normalizedOr(*r.camera.target - *r.camera.viewpoint, d);
-        const double a = v.twistDegrees * 3.14159265358979323846 / 180.0;
+        const double a = radians(v.twistDegrees);
         const Vec3 u = r.camera.up;
         r.camera.up =
             u * std::cos(a) - cross(d, u) * std::sin(a) + d * (dot(d, u) * (1 - std::cos(a)));
@@ -104,8 +104,7 @@ void setPictureRadii(MeshOptions& mo, const Bounds& bounds, const RaytraceOption
     // as drawn fills the picture a little more, so this errs towards thicker).
     const Camera camera = framedCamera(options.camera, bounds, options.width, options.height);
     const double distance = length(*camera.target - *camera.viewpoint);
-    const double pixel =
-        2 * distance * std::tan(camera.fieldOfView * 3.14159265358979323846 / 360) / options.height;
+    const double pixel = 2 * distance * std::tan(radians(camera.fieldOfView / 2)) / options.height;
     if (!(pixel > 0) || !std::isfinite(pixel)) return;
     // A stem thinner than a pixel would vanish between the rays: it is drawn at least half a
     // pixel thick, as line art would. A stem under about two pixels across becomes a round

@@ -213,7 +213,7 @@ class GeneralizedCylinderTrack {
     };
 
     static std::array<double, 2> polar(double degrees, double length) {
-        double r = degrees * 3.14159265358979323846 / 180;
+        double r = radians(degrees);
         return {std::cos(r) * length, std::sin(r) * length};
     }
 

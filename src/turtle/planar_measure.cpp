@@ -91,14 +91,14 @@ class PlanarWalk {
     explicit PlanarWalk(const Model& model) : ops_(opTable(model.lsystem)) {
         const ViewSettings& v = model.view;
         step_ = v.stepLength;
-        double delta = v.angleDegrees * kPi / 180.0;
+        double delta = radians(v.angleDegrees);
         cos_ = std::cos(delta);
         turnSign_ = v.clockwisePlus ? -1.0 : 1.0;
         sinLeft_ = turnSign_ * std::sin(delta);
         sinRight_ = -turnSign_ * std::sin(delta);
         view_ = &v;
         Frame& t = state_.turtle;
-        double h = v.initialHeading * kPi / 180.0;
+        double h = radians(v.initialHeading);
         rotateFrame(t, std::cos(h), std::sin(h));
         t.width = static_cast<float>(v.initialWidth);
         baseWidth_ = t.width;
@@ -301,7 +301,7 @@ bool PlanarWalk::slowModule(TurtleOp op, ParamView args) {
         if (args.empty()) {
             rotateFrame(t, cos_, sinDelta);
         } else {
-            double r = args[0] * kPi / 180.0;
+            double r = radians(args[0]);
             if (!std::isfinite(r)) return false;  // NaN would reach the zeros of z
             rotateFrame(t, std::cos(r), sign * std::sin(r));
         }

@@ -121,7 +121,7 @@ SubtreeMotion SubtreeSummaries::leaf(Symbol symbol) const {
     SubtreeMotion m;
     m.summarised = true;
     const ViewSettings& v = view_;
-    double delta = v.angleDegrees * turtle::kPi / 180.0;
+    double delta = radians(v.angleDegrees);
     double turn = v.clockwisePlus ? -1.0 : 1.0;
     const TurtleOp op = turtle::opOf(ls_, symbol);
     switch (op) {

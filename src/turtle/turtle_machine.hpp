@@ -56,7 +56,6 @@ enum class TurtleOp : std::uint8_t {
     Elasticity,     // cpfg's _: adds the elasticity increment, or _(e) sets the elasticity
 };
 
-inline constexpr double kPi = 3.14159265358979323846;
 // Turns between two Gram-Schmidt passes over the frame. It changes the doubles of every
 // later step, so every walk that must agree with this one counts turns the same way.
 inline constexpr std::uint64_t kOrthonormaliseEvery = 4096;
@@ -178,14 +177,14 @@ class TurtleMachine {
           ops_(opTable(ls)),
           cylinders_(view.contours, view.contourSides) {
         const ViewSettings& v = view_;
-        double delta = v.angleDegrees * kPi / 180.0;
+        double delta = radians(v.angleDegrees);
         deltaCos_ = std::cos(delta);
         deltaSin_ = std::sin(delta);
         turnSign_ = v.clockwisePlus ? -1.0 : 1.0;
         // cpfg's / rolls L toward -U (its up vector is our -U); pfg data files keep the
         // book's / (L toward U).
         rollSign_ = v.clockwisePlus ? 1.0 : -1.0;
-        double h = v.initialHeading * kPi / 180.0;
+        double h = radians(v.initialHeading);
         rotatePair(state_.heading, state_.left, std::cos(h), std::sin(h));
         state_.width = static_cast<float>(v.initialWidth);
         state_.color = colorIndex(v.initialColor);
@@ -288,7 +287,7 @@ class TurtleMachine {
         for (const AngleMemo& m : angles_)
             if (std::bit_cast<std::uint64_t>(m.degrees) == std::bit_cast<std::uint64_t>(degrees))
                 return m;
-        const double r = degrees * kPi / 180.0;
+        const double r = radians(degrees);
         AngleMemo& m = angles_[nextAngle_++ % angles_.size()];
         m = {degrees, std::cos(r), std::sin(r)};
         return m;
