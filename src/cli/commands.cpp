@@ -17,6 +17,7 @@
 #include "graftal/model.hpp"
 #include "graftal/pipeline.hpp"
 #include "graftal/stages.hpp"
+#include "graftal/statistics.hpp"
 #include "graftal/streamed_interpretation.hpp"
 #include "graftal/streaming.hpp"
 #include "graftal/turtle.hpp"
@@ -320,69 +321,19 @@ int printPrediction(const InputOptions& in, const Loaded& l) {
 int runStats(const InputOptions& in, bool geometry, bool predict) {
     Loaded l = loadInput(in);
     if (predict) return printPrediction(in, l);
+    DeriveRequest request = deriveRequest(in);
+    request.steps = l.steps;
+    const ModelStatistics stats = measured(l.model, request, geometry);
+    endProgressLine();
     nlohmann::ordered_json j;
     j["file"] = fileName(in);
-    j["steps"] = l.steps;
-    if (chooseStreaming(l, in, true)) {
-        StreamedMeasure m =
-            measureStreamed(l.model, l.steps, derivationOptions(in, l.model), geometry);
-        j["modules"] = m.modules;
-        j["symbols"] = symbolsJson(l.model.lsystem.symbols, m.symbolCounts);
-        if (geometry) {
-            j["segments"] = m.segments;
-            j["polygons"] = m.polygons;
-            j["bbox"] = bboxJson(m.bounds);
-        }
-        std::cout << j.dump(2) << '\n';
-        return 0;
-    }
-    if (!geometry && l.steps > 0) {
-        // Symbol counts alone: the last step is counted without being written, which
-        // halves the memory (and the fresh pages) the derivation needs.
-        Derivation d(l.model, derivationOptions(in, l.model));
-        d.run(l.steps - 1);
-        std::vector<std::uint64_t> counts = d.countNextStep();
-        if (counts.empty()) {
-            d.step();
-            d.finish();
-            counts = countSymbols(d.current(), l.model.lsystem.symbols.size(), in.threads);
-        }
-        endProgressLine();
-        std::uint64_t total = 0;
-        for (std::uint64_t c : counts) total += c;
-        j["modules"] = total;
-        j["symbols"] = symbolsJson(l.model.lsystem.symbols, counts);
-        std::cout << j.dump(2) << '\n';
-        return 0;
-    }
-    ModuleString modules = derive(l.model, l.steps, derivationOptions(in, l.model));
-    endProgressLine();
-    // Counts and bounds only: the turtle walks without storing any geometry. Without a
-    // homomorphism that walk also counts the symbols, so the string is read once.
-    std::optional<StreamedMeasure> m;
-    std::optional<Bounds> viewVolume;
-    if (geometry) {
-        ModuleString drawn =
-            l.model.lsystem.homomorphism.empty()
-                ? ModuleString()
-                : applyHomomorphism(l.model.lsystem, modules, derivationOptions(in, l.model));
-        const ModuleString& seen = l.model.lsystem.homomorphism.empty() ? modules : drawn;
-        m = measureModules(l.model, seen);
-        // A cpfg file's box is cpfg's view volume (the box line of its output).
-        if (!l.model.lsystem.legacyPfg) viewVolume = cpfgViewVolume(l.model, seen);
-    }
-    std::vector<std::uint64_t> counts;
-    if (m && l.model.lsystem.homomorphism.empty()) {
-        counts = m->symbolCounts;
-    } else {
-        counts = countSymbols(modules, l.model.lsystem.symbols.size(), in.threads);
-    }
-    j["modules"] = modules.size();
-    j["symbols"] = symbolsJson(l.model.lsystem.symbols, counts);
-    if (m) {
-        j["segments"] = m->segments;
-        j["polygons"] = m->polygons;
-        j["bbox"] = bboxJson(viewVolume ? *viewVolume : m->bounds);
+    j["steps"] = stats.steps;
+    j["modules"] = stats.modules;
+    j["symbols"] = symbolsJson(l.model.lsystem.symbols, stats.symbolCounts);
+    if (stats.measured) {
+        j["segments"] = stats.segments;
+        j["polygons"] = stats.polygons;
+        j["bbox"] = bboxJson(stats.bounds);
     }
     std::cout << j.dump(2) << '\n';
     return 0;

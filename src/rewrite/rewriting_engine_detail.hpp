@@ -38,11 +38,12 @@ constexpr std::size_t kParallelThreshold = 1 << 16;
 // a string that grows by 27% a step (Hogeweg-Hesper) then reallocates every ninth step.
 constexpr std::size_t kHeadroom = 8;
 
-bool arityMatches(const ModulePattern& p, const ModuleString& s, std::size_t j) {
+inline bool arityMatches(const ModulePattern& p, const ModuleString& s, std::size_t j) {
     return p.formals.size() == s.params(j).size();
 }
 
-void bind(const ModulePattern& p, const ModuleString& s, std::size_t j, double* slots, int& slot) {
+inline void bind(const ModulePattern& p, const ModuleString& s, std::size_t j, double* slots,
+                 int& slot) {
     ParamView args = s.params(j);
     for (std::size_t k = 0; k < p.formals.size(); ++k) slots[slot++] = args[k];
 }
