@@ -57,6 +57,7 @@ int runMusic(const InputOptions& in, const MusicCommandOptions& o) {
     AudioOptions audio;
     audio.sampleRate = o.sampleRate;
     audio.soundFont = o.soundFont;
+    audio.memoryLimit = in.memoryLimit;
     writeScore(score, o.output, audio);
     return 0;
 }
