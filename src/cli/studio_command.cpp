@@ -40,12 +40,19 @@ void addStudioCommand(CLI::App& app, StudioCommandOptions& options) {
     options.command->add_option("--port", options.port, "port on 127.0.0.1 (default: a free one)")
         ->check(CLI::Range(0, 65535));
     options.command->add_flag("--no-open", options.noOpen, "do not open the browser");
+    options.command->add_flag("--no-token", options.noToken,
+                              "answer requests without this run's secret token (any program "
+                              "or user of this machine can then read and write the models)");
 }
 
 int runStudio(const StudioCommandOptions& options) {
     studio::StudioOptions server;
     server.root = options.path.empty() ? fs::path(".") : fs::path(options.path);
     server.assets = studioAssets();
+    server.requireToken = !options.noToken;
+    if (options.noToken)
+        std::cerr << "graftal: warning: --no-token: every program and every user of this "
+                     "machine can use this studio (read, write and derive its models)\n";
     if (server.assets.empty())
         std::cerr << "graftal: warning: the studio's page was not built (make builds it); "
                      "only its API is served\n";
@@ -68,7 +75,10 @@ int runStudio(const StudioCommandOptions& options) {
 
     studio::StudioServer studio(server);
     const int port = studio.start(options.port);
-    const std::string address = "http://127.0.0.1:" + std::to_string(port) + "/";
+    // As Jupyter does: the secret goes in the address the browser opens; the page keeps it
+    // as a cookie.
+    const std::string address = "http://127.0.0.1:" + std::to_string(port) + "/" +
+                                (studio.token().empty() ? "" : "?token=" + studio.token());
     std::cout << "graftal studio: " << address << " (Ctrl-C stops it)" << std::endl;
     if (!options.noOpen) {
         const std::string command = "xdg-open '" + address + "' >/dev/null 2>&1 &";
