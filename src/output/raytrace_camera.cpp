@@ -158,6 +158,10 @@ PointSource drawnPoints(std::span<const TracedScene> scenes) {
     };
 }
 
+bool embreeCanTrace(const Vec3& origin, const Vec3& direction) {
+    return within(origin, 1e18) && within(direction, 1e18);
+}
+
 // Values no picture can be made from, refused before any geometry reaches Embree.
 void checkCamera(const Camera& c) {
     // A fitted parallel view takes only the direction from viewpoint to target: those may be
