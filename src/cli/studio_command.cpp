@@ -1,5 +1,6 @@
 // `graftal studio [PATH] [--port N] [--no-open]`: the live editor in the browser. The page
 // comes from share/graftal/studio beside the program (built by `make` from studio/).
+#include <fcntl.h>
 #include <malloc.h>
 #include <pthread.h>
 #include <unistd.h>
@@ -80,14 +81,26 @@ int runStudio(const StudioCommandOptions& options) {
     const std::string address = "http://127.0.0.1:" + std::to_string(port) + "/" +
                                 (studio.token().empty() ? "" : "?token=" + studio.token());
     std::cout << "graftal studio: " << address << " (Ctrl-C stops it)" << std::endl;
+    // The browser is given a file only this user can read, which leads to the address: the
+    // token is never on a command line that other users can list (Jupyter's redirect file).
+    const fs::path redirect =
+        fs::temp_directory_path() / ("graftal-studio-" + std::to_string(::getpid()) + ".html");
     if (!options.noOpen) {
-        const std::string command = "xdg-open '" + address + "' >/dev/null 2>&1 &";
-        if (std::system(command.c_str()) != 0)
+        const int fd = ::open(redirect.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
+        const std::string page = "<!doctype html><meta http-equiv=\"refresh\" content=\"0;url=" +
+                                 address + "\"><a href=\"" + address + "\">graftal studio</a>\n";
+        const bool written = fd >= 0 && ::write(fd, page.data(), page.size()) ==
+                                            static_cast<ssize_t>(page.size());
+        if (fd >= 0) ::close(fd);
+        const std::string command = "xdg-open '" + redirect.string() + "' >/dev/null 2>&1 &";
+        if (!written || std::system(command.c_str()) != 0)
             std::cerr << "graftal: note: open " << address << " in a browser\n";
     }
     int received = 0;
     sigwait(&signals, &received);
     studio.stop();
+    std::error_code ec;
+    if (!options.noOpen) fs::remove(redirect, ec);
     return 0;
 }
 
