@@ -12,6 +12,7 @@ add_library(graftal_studio STATIC
   src/studio/studio_root.cpp
   src/studio/studio_model.cpp
   src/studio/studio_server.cpp
+  src/studio/studio_guard.cpp
   src/studio/zip_archive.cpp
   src/studio/line_buffer.cpp)
 set_target_properties(graftal_studio PROPERTIES POSITION_INDEPENDENT_CODE ON)

@@ -31,7 +31,9 @@ options_for() {
         surface) echo "-max_len=8192 -timeout=10 -rss_limit_mb=1024 -dict=$here/dict/surface.dict" ;;
         expression) echo "-max_len=1024 -timeout=10 -rss_limit_mb=1024 -dict=$here/dict/lsystem.dict" ;;
         data_files) echo "-max_len=4096 -timeout=10 -rss_limit_mb=1024 -dict=$here/dict/view.dict" ;;
-        *) echo "unknown fuzz target '$1' (parse, derive, surface, expression, data_files)" >&2; exit 2 ;;
+        # A flags byte, four sizes and 16 doubles: longer inputs add nothing.
+        camera) echo "-max_len=256 -timeout=10 -rss_limit_mb=1024" ;;
+        *) echo "unknown fuzz target '$1' (parse, derive, surface, expression, data_files, camera)" >&2; exit 2 ;;
     esac
 }
 

@@ -31,6 +31,7 @@ class StudioConnectionTest : public ::testing::Test {
                                           "axiom: F\nF --> F+F-F-F+F\nendlsystem\n";
         graftal::studio::StudioOptions options;
         options.root = root;
+        options.requireToken = false;  // raw requests: the token is tested elsewhere
         server = std::make_unique<graftal::studio::StudioServer>(options);
         port = server->start(0);
     }

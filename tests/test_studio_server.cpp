@@ -75,6 +75,7 @@ class StudioServerTest : public ::testing::Test {
         port = server->start(0);
         client = std::make_unique<httplib::Client>("127.0.0.1", port);
         client->set_read_timeout(60, 0);
+        client->set_default_headers({{"X-Graftal-Token", server->token()}});
     }
     void TearDown() override {
         client.reset();
@@ -444,6 +445,7 @@ TEST_F(StudioServerTest, WatchAnswersWhenTheFileChanges) {
                             fs::last_write_time(root / "hilbert.l") + std::chrono::seconds(2));
     });
     httplib::Client watcher("127.0.0.1", port);
+    watcher.set_default_headers({{"X-Graftal-Token", server->token()}});
     watcher.set_read_timeout(10, 0);
     auto res = watcher.Get(("/api/watch?path=hilbert.l&since=" + std::to_string(mtime)).c_str());
     change.get();
@@ -461,6 +463,7 @@ TEST_F(StudioServerTest, ANewDerivationCancelsTheSessionsPreviousOne) {
     auto started = std::chrono::steady_clock::now();
     auto first = std::async(std::launch::async, [&] {
         httplib::Client other("127.0.0.1", port);
+        other.set_default_headers({{"X-Graftal-Token", server->token()}});
         other.set_read_timeout(120, 0);
         json body = model(slow);
         auto res = other.Post("/api/derive", body.dump(), "application/json");

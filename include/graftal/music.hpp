@@ -81,10 +81,14 @@ void writeMidi(const Score& score, const std::filesystem::path& path);
 // The audio synthesised by FluidSynth with `soundFont` (empty: findSoundFont()): 16-bit PCM
 // WAV, mono, `sampleRate` samples per second; the score's length plus `releaseSeconds` for
 // the last note to ring out.
+// The sound is held in memory once (4 bytes a sample) to be normalised: a score whose sound
+// needs more than `memoryLimit` (or more than a WAV file's 4 GiB) is an Error saying what to
+// lower.
 struct AudioOptions {
     int sampleRate = 44100;
     double releaseSeconds = 1.0;
     std::filesystem::path soundFont;
+    std::size_t memoryLimit = std::size_t(512) << 20;  // some 50 minutes at 44100 Hz
 };
 void writeWav(const Score& score, const std::filesystem::path& path,
               const AudioOptions& audio = {});

@@ -67,6 +67,7 @@ int runMusic(const InputOptions& in, const MusicCommandOptions& o) {
     request.music = options;
     request.audio.sampleRate = o.sampleRate;
     request.audio.soundFont = o.soundFont;
+    request.audio.memoryLimit = in.memoryLimit;
     exportModel(l.model, Destination::file(o.output), request);
     endProgressLine();
     return 0;

@@ -1,5 +1,6 @@
 // `graftal studio [PATH] [--port N] [--no-open]`: the live editor in the browser. The page
 // comes from share/graftal/studio beside the program (built by `make` from studio/).
+#include <fcntl.h>
 #include <malloc.h>
 #include <pthread.h>
 #include <unistd.h>
@@ -40,12 +41,19 @@ void addStudioCommand(CLI::App& app, StudioCommandOptions& options) {
     options.command->add_option("--port", options.port, "port on 127.0.0.1 (default: a free one)")
         ->check(CLI::Range(0, 65535));
     options.command->add_flag("--no-open", options.noOpen, "do not open the browser");
+    options.command->add_flag("--no-token", options.noToken,
+                              "answer requests without this run's secret token (any program "
+                              "or user of this machine can then read and write the models)");
 }
 
 int runStudio(const StudioCommandOptions& options) {
     studio::StudioOptions server;
     server.root = options.path.empty() ? fs::path(".") : fs::path(options.path);
     server.assets = studioAssets();
+    server.requireToken = !options.noToken;
+    if (options.noToken)
+        std::cerr << "graftal: warning: --no-token: every program and every user of this "
+                     "machine can use this studio (read, write and derive its models)\n";
     if (server.assets.empty())
         std::cerr << "graftal: warning: the studio's page was not built (make builds it); "
                      "only its API is served\n";
@@ -68,16 +76,31 @@ int runStudio(const StudioCommandOptions& options) {
 
     studio::StudioServer studio(server);
     const int port = studio.start(options.port);
-    const std::string address = "http://127.0.0.1:" + std::to_string(port) + "/";
+    // As Jupyter does: the secret goes in the address the browser opens; the page keeps it
+    // as a cookie.
+    const std::string address = "http://127.0.0.1:" + std::to_string(port) + "/" +
+                                (studio.token().empty() ? "" : "?token=" + studio.token());
     std::cout << "graftal studio: " << address << " (Ctrl-C stops it)" << std::endl;
+    // The browser is given a file only this user can read, which leads to the address: the
+    // token is never on a command line that other users can list (Jupyter's redirect file).
+    const fs::path redirect =
+        fs::temp_directory_path() / ("graftal-studio-" + std::to_string(::getpid()) + ".html");
     if (!options.noOpen) {
-        const std::string command = "xdg-open '" + address + "' >/dev/null 2>&1 &";
-        if (std::system(command.c_str()) != 0)
+        const int fd = ::open(redirect.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
+        const std::string page = "<!doctype html><meta http-equiv=\"refresh\" content=\"0;url=" +
+                                 address + "\"><a href=\"" + address + "\">graftal studio</a>\n";
+        const bool written = fd >= 0 && ::write(fd, page.data(), page.size()) ==
+                                            static_cast<ssize_t>(page.size());
+        if (fd >= 0) ::close(fd);
+        const std::string command = "xdg-open '" + redirect.string() + "' >/dev/null 2>&1 &";
+        if (!written || std::system(command.c_str()) != 0)
             std::cerr << "graftal: note: open " << address << " in a browser\n";
     }
     int received = 0;
     sigwait(&signals, &received);
     studio.stop();
+    std::error_code ec;
+    if (!options.noOpen) fs::remove(redirect, ec);
     return 0;
 }
 

@@ -14,6 +14,7 @@ struct StudioCommandOptions {
     std::string path;
     int port = 0;
     bool noOpen = false;
+    bool noToken = false;
 };
 
 void addStudioCommand(CLI::App& app, StudioCommandOptions& options);

@@ -22,8 +22,11 @@
 extern "C" {
 #include <mcpp_lib.h>
 }
+#include <elf.h>
+#include <link.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/mman.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -60,6 +63,63 @@ constexpr std::string_view kQuoteShield = "\xEE\x80\x80";
 constexpr std::string_view kSlashShield = "\xEE\x80\x81";
 
 std::mutex gMcppMutex;
+
+// libmcpp's macro lookup (look_prev) compares the stored names of a hash chain with the name
+// looked up by memcmp(stored, name, strlen(name) + 1): a stored name shorter than the one
+// looked up is read past its end, past its allocation when the macro's text is short too
+// (AddressSanitizer reports it; glibc's vectorised memcmp really reads those bytes). mcpp
+// only needs the sign of the first difference, and the stored name ends with its NUL, so
+// a comparison that stops at the first difference answers the same without reading past.
+// It is put in libmcpp's own PLT slot for memcmp: nothing else in the program changes.
+extern "C" int graftalMcppCompare(const void* a, const void* b, std::size_t n) {
+    const auto* x = static_cast<const unsigned char*>(a);
+    const auto* y = static_cast<const unsigned char*>(b);
+    for (std::size_t i = 0; i < n; ++i)
+        if (x[i] != y[i]) return x[i] < y[i] ? -1 : 1;
+    return 0;
+}
+
+bool gMcppCompareShielded = false;
+
+// Finds libmcpp's relocation of memcmp in its PLT and points it at graftalMcppCompare.
+int shieldMcppCompare(dl_phdr_info* info, std::size_t, void*) {
+    if (!info->dlpi_name || !std::strstr(info->dlpi_name, "libmcpp")) return 0;
+    const ElfW(Dyn)* dynamic = nullptr;
+    for (int i = 0; i < info->dlpi_phnum; ++i)
+        if (info->dlpi_phdr[i].p_type == PT_DYNAMIC)
+            dynamic = reinterpret_cast<const ElfW(Dyn)*>(info->dlpi_addr +
+                                                        info->dlpi_phdr[i].p_vaddr);
+    if (!dynamic) return 1;
+    ElfW(Addr) relocations = 0, symbols = 0, names = 0;
+    std::size_t size = 0;
+    for (const ElfW(Dyn)* d = dynamic; d->d_tag != DT_NULL; ++d) {
+        if (d->d_tag == DT_JMPREL) relocations = d->d_un.d_ptr;
+        if (d->d_tag == DT_PLTRELSZ) size = d->d_un.d_val;
+        if (d->d_tag == DT_SYMTAB) symbols = d->d_un.d_ptr;
+        if (d->d_tag == DT_STRTAB) names = d->d_un.d_ptr;
+    }
+    // glibc stores these relocated; another loader may leave them relative to the base.
+    auto absolute = [&](ElfW(Addr) a) { return a < info->dlpi_addr ? a + info->dlpi_addr : a; };
+    if (!relocations || !symbols || !names) return 1;
+    const auto* rela = reinterpret_cast<const ElfW(Rela)*>(absolute(relocations));
+    const auto* symbol = reinterpret_cast<const ElfW(Sym)*>(absolute(symbols));
+    const char* name = reinterpret_cast<const char*>(absolute(names));
+    for (std::size_t i = 0; i < size / sizeof(ElfW(Rela)); ++i) {
+        if (std::strcmp(name + symbol[ELF64_R_SYM(rela[i].r_info)].st_name, "memcmp") != 0)
+            continue;
+        auto* slot = reinterpret_cast<void**>(info->dlpi_addr + rela[i].r_offset);
+        // Writable under lazy binding; read-only after relocation with RELRO and BIND_NOW.
+        const long page = ::sysconf(_SC_PAGESIZE);
+        void* start = reinterpret_cast<void*>(reinterpret_cast<std::uintptr_t>(slot) &
+                                              ~static_cast<std::uintptr_t>(page - 1));
+        if (::mprotect(start, static_cast<std::size_t>(page), PROT_READ | PROT_WRITE) != 0)
+            return 1;
+        *slot = reinterpret_cast<void*>(&graftalMcppCompare);
+        gMcppCompareShielded = true;
+        return 1;
+    }
+    return 1;
+}
 
 std::string shield(std::string_view text) {
     std::string out;
@@ -541,6 +601,11 @@ bool needsPreprocessing(std::string_view text, const PreprocessOptions& options)
     return false;
 }
 
+bool mcppComparesWithinNames() {
+    std::lock_guard<std::mutex> lock(gMcppMutex);
+    return gMcppCompareShielded;
+}
+
 bool preprocessSource(std::string_view text, const PreprocessOptions& options, SourceText& out,
                       DiagnosticList& diags) {
     const std::string& mainName = options.fileName;
@@ -570,6 +635,8 @@ bool preprocessSource(std::string_view text, const PreprocessOptions& options, S
     McppRun run;
     {
         std::lock_guard<std::mutex> lock(gMcppMutex);
+        static std::once_flag shield;
+        std::call_once(shield, [] { ::dl_iterate_phdr(shieldMcppCompare, nullptr); });
         run = runMcpp(std::move(args), limit);
     }
     readMessages(run.messages, ws, mainName, diags);

@@ -40,4 +40,9 @@ bool needsPreprocessing(std::string_view text, const PreprocessOptions& options)
 bool preprocessSource(std::string_view text, const PreprocessOptions& options, SourceText& out,
                       DiagnosticList& diags);
 
+// True once libmcpp's name comparisons go through a comparison that stops at the first
+// difference (installed by the first preprocessSource): its macro lookup then reads no
+// stored name past its end.
+bool mcppComparesWithinNames();
+
 }  // namespace graftal

@@ -1,11 +1,16 @@
 // LilyPond source of a score, and the engraved score made by running the lilypond program.
 #include <fcntl.h>
-#include <spawn.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <csignal>
 #include <cstdlib>
+#include <thread>
+#include <vector>
 #include <fstream>
 #include <sstream>
 
@@ -20,6 +25,8 @@ namespace graftal {
 namespace fs = std::filesystem;
 
 namespace {
+
+constexpr std::size_t kMostEngravedBars = 1000;
 
 // LilyPond's Dutch names: c cis d ... with ' for each octave above the one below middle C.
 std::string lilyPitch(int midi) {
@@ -82,24 +89,78 @@ struct TemporaryFolder {
     }
 };
 
-// Runs `argv` with its output in `log`; returns the exit status (-1 when it cannot start).
-int run(const std::vector<std::string>& args, const fs::path& log) {
+struct RunResult {
+    int status = -1;  // the exit status; -1 when it could not start or was killed
+    bool timedOut = false;
+};
+
+// How long lilypond may take: $GRAFTAL_LILYPOND_SECONDS, else two minutes (a score of
+// a few hundred bars takes seconds; thousands of bars on one page took minutes and
+// gigabytes).
+double lilyPondSeconds() {
+    if (const char* env = std::getenv("GRAFTAL_LILYPOND_SECONDS"); env && *env) {
+        char* end = nullptr;
+        const double s = std::strtod(env, &end);
+        if (end != env && s > 0 && s < 1e6) return s;
+    }
+    return 120;
+}
+
+// Runs `args` with its output in `log`, in a process group of its own that dies with this
+// process (PR_SET_PDEATHSIG) and is killed whole after `seconds`: no lilypond (or the
+// ghostscript it starts) is left running when graftal stops or gives up.
+RunResult run(const std::vector<std::string>& args, const fs::path& log, double seconds) {
+    RunResult result;
     std::vector<char*> argv;
     for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
     argv.push_back(nullptr);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_adddup2(&actions, 1, 2);
-    pid_t pid = 0;
-    int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&actions);
-    if (rc != 0) return -1;
+    const int in = ::open("/dev/null", O_RDONLY | O_CLOEXEC);
+    const int out = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (in < 0 || out < 0) {
+        if (in >= 0) ::close(in);
+        if (out >= 0) ::close(out);
+        return result;
+    }
+    const pid_t parent = ::getpid();
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        // Only async-signal-safe calls between fork and exec.
+        ::setpgid(0, 0);
+        ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+        if (::getppid() != parent) ::_exit(127);  // the parent died before the line above
+        ::dup2(in, 0);
+        ::dup2(out, 1);
+        ::dup2(out, 2);
+        ::execve(argv[0], argv.data(), environ);
+        ::_exit(127);
+    }
+    ::close(in);
+    ::close(out);
+    if (pid < 0) return result;
+    ::setpgid(pid, pid);  // also here: whichever runs first, the group exists before a kill
+    const auto deadline = std::chrono::steady_clock::now() +
+                          std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                              std::chrono::duration<double>(seconds));
+    // Until it is reaped, its pid (the group's id) cannot be reused: the group is killed
+    // before that, on time out and after it ended (taking what it started with it).
+    while (true) {
+        siginfo_t info{};
+        const int waited = ::waitid(P_PID, static_cast<id_t>(pid), &info,
+                                    WEXITED | WNOHANG | WNOWAIT);
+        if (waited < 0 && errno != EINTR) break;
+        if (waited == 0 && info.si_pid == pid) break;
+        if (std::chrono::steady_clock::now() >= deadline) {
+            result.timedOut = true;
+            break;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    ::kill(-pid, SIGKILL);
     int status = 0;
-    while (::waitpid(pid, &status, 0) < 0)
-        if (errno != EINTR) return -1;
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    result.status = !result.timedOut && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return result;
 }
 
 std::string tail(const fs::path& log) {
@@ -164,6 +225,14 @@ void engraveScore(const Score& score, const fs::path& path) {
                         "cannot engrave the score: the lilypond program is not installed "
                         "(Debian: 'apt-get install lilypond', or 'make deps'); write a .ly "
                         "file instead and engrave it later with 'lilypond score.ly'");
+    // LilyPond spends minutes and gigabytes on thousands of bars (on one page for a picture):
+    // such a score is refused before it starts.
+    const std::size_t bars = notation::bars(score).size();
+    if (bars > kMostEngravedBars)
+        throw fileError(path, "cannot engrave the score: it has " + std::to_string(bars) +
+                                  " bars, more than the " + std::to_string(kMostEngravedBars) +
+                                  " an engraved score may have: lower the steps or the unit "
+                                  "(--unit, `music unit:`), or write a .ly (or .mid) file");
     TemporaryFolder tmp;
     const fs::path source = tmp.path / "score.ly";
     {
@@ -178,7 +247,17 @@ void engraveScore(const Score& score, const fs::path& path) {
     if (ext == ".svg") args.push_back("--svg");
     args.insert(args.end(), {"-o", (tmp.path / "score").string(), source.string()});
     const fs::path log = tmp.path / "lilypond.log";
-    int status = run(args, log);
+    const double seconds = lilyPondSeconds();
+    const RunResult ran = run(args, log, seconds);
+    if (ran.timedOut) {
+        std::ostringstream limit;
+        limit << seconds;
+        throw fileError(path, "cannot engrave the score: lilypond took longer than " +
+                                  limit.str() + " s on its " + std::to_string(bars) +
+                                  " bars and was stopped: lower the steps or the unit, or "
+                                  "write a .ly (or .mid) file instead");
+    }
+    const int status = ran.status;
     if (status != 0) {
         std::string detail = tail(log);
         throw fileError(path,

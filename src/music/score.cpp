@@ -34,8 +34,13 @@ void checkOptions(const MusicOptions& o) {
     if (o.root < 0 || o.root > 127)
         throw musicError("the root " + std::to_string(o.root) +
                          " is outside MIDI's notes 0 to 127");
-    if (!(o.tempo > 0) || o.tempo > 1000)
-        throw musicError("the tempo is beats per minute, above 0 and at most 1000");
+    // A MIDI file holds a beat of at most 2^24 microseconds: 3.6 beats per minute.
+    if (!(o.tempo >= 4 && o.tempo <= 1000)) {
+        std::ostringstream got;
+        got << o.tempo;
+        throw musicError("the tempo is beats per minute, from 4 (the slowest a MIDI file holds) "
+                         "to 1000, got " + got.str());
+    }
     if (o.instrument < 1 || o.instrument > 128)
         throw musicError("the instrument is a General MIDI program from 1 to 128, got " +
                          std::to_string(o.instrument));

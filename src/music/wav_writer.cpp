@@ -5,6 +5,10 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <iomanip>
+#include <sstream>
+#include <string>
+#include <vector>
 #include <mutex>
 #include <ostream>
 
@@ -54,6 +58,33 @@ struct Event {
     bool on;
     int pitch, velocity;
 };
+
+std::string megabytes(double bytes) {
+    std::ostringstream os;
+    os << std::fixed << std::setprecision(0) << bytes / (1 << 20) << " MiB";
+    return os.str();
+}
+
+// The sound of a long score (a slow tempo, a long curve, a large `music unit:`) is refused
+// before anything is allocated, with what to lower.
+void checkAudioSize(double frames, const Score& score, const std::filesystem::path& path,
+                    const AudioOptions& audio) {
+    const double bytes = frames * sizeof(float);
+    std::ostringstream length;
+    length << std::setprecision(3) << score.seconds() << " s of sound at " << audio.sampleRate
+           << " Hz";
+    const char* lower =
+        "lower the steps or the unit (--unit, `music unit:`), raise the tempo (--tempo, `music "
+        "tempo:`) or lower --sample-rate";
+    if (!std::isfinite(frames) || frames * 2 > 4294967295.0 - 44)
+        throw fileError(path, "cannot write audio: " + length.str() +
+                                  " is more than a WAV file holds (4 GiB): " + lower);
+    if (bytes > static_cast<double>(audio.memoryLimit))
+        throw fileError(path, "cannot write audio: " + length.str() + " needs " +
+                                  megabytes(bytes) + " of memory, over the memory limit of " +
+                                  megabytes(static_cast<double>(audio.memoryLimit)) + ": " +
+                                  lower + " (or raise --memory-limit)");
+}
 
 }  // namespace
 
@@ -116,10 +147,14 @@ void writeWav(const Score& score, const std::filesystem::path& path, const Audio
     std::stable_sort(events.begin(), events.end(), [](const Event& a, const Event& b) {
         return a.frame != b.frame ? a.frame < b.frame : (!a.on && b.on);
     });
-    const auto total = static_cast<std::int64_t>(
-        std::llround(score.seconds() * audio.sampleRate + audio.releaseSeconds * audio.sampleRate));
+    const double frames = std::round((score.seconds() + audio.releaseSeconds) * audio.sampleRate);
+    checkAudioSize(frames, score, path, audio);
+    const auto total = static_cast<std::int64_t>(frames);
 
-    std::vector<float> left(static_cast<std::size_t>(total)), right(left.size());
+    // Mono, rendered in blocks: only the mixed-down sound is kept, to be normalised.
+    std::vector<float> mono(static_cast<std::size_t>(total));
+    std::vector<float> left(4096), right(4096);
+    float peak = 0;
     std::int64_t frame = 0;
     std::size_t next = 0;
     while (frame < total) {
@@ -132,20 +167,18 @@ void writeWav(const Score& score, const std::filesystem::path& path, const Audio
         }
         std::int64_t until = next < events.size() ? std::min(events[next].frame, total) : total;
         until = std::min(until, frame + 4096);
-        int len = static_cast<int>(until - frame);
-        if (fluid_synth_write_float(s.synth, len, left.data() + frame, 0, 1, right.data() + frame,
-                                    0, 1) != FLUID_OK)
+        const int len = static_cast<int>(until - frame);
+        if (fluid_synth_write_float(s.synth, len, left.data(), 0, 1, right.data(), 0, 1) !=
+            FLUID_OK)
             throw fileError(path, "cannot write audio: FluidSynth failed to render");
+        for (int i = 0; i < len; ++i) {
+            const float v = 0.5f * (left[i] + right[i]);
+            mono[static_cast<std::size_t>(frame + i)] = v;
+            peak = std::max(peak, std::abs(v));
+        }
         frame = until;
     }
 
-    // Mono, normalised so that the loudest sample is at 90% of full scale.
-    std::vector<float> mono(left.size());
-    float peak = 0;
-    for (std::size_t i = 0; i < mono.size(); ++i) {
-        mono[i] = 0.5f * (left[i] + right[i]);
-        peak = std::max(peak, std::abs(mono[i]));
-    }
     const float gain = peak > 0 ? 0.9f / peak : 1.0f;
     const auto dataBytes = static_cast<std::uint32_t>(mono.size() * 2);
     writeStreamAtomically(

@@ -9,6 +9,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
+#include <sstream>
+#include <string>
 
 #include "graftal/diagnostics.hpp"
 #include "graftal/framed_picture.hpp"
@@ -24,6 +27,24 @@ namespace {
 constexpr double kFrameFill = 0.94;
 constexpr double kFrameElevationDegrees = 20;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
+// Embree takes rays in single precision and asserts that their origins and directions lie
+// within 1.8e18 (FLT_LARGE); far short of that a float cannot tell a plant's points apart.
+constexpr double kFarthest = 1e15;
+
+std::string formatPoint(const Vec3& p) {
+    std::ostringstream os;
+    os << p.x << ", " << p.y << ", " << p.z;
+    return os.str();
+}
+
+bool within(const Vec3& p, double limit) {
+    return isFinite(p) && std::abs(p.x) <= limit && std::abs(p.y) <= limit &&
+           std::abs(p.z) <= limit;
+}
+
+Error cameraError(const std::string& message) {
+    return Error(SourceLocation{"graftal", 0, 0}, message);
+}
 
 double tanHalfVertical(const Camera& c) {
     return std::tan(radians(c.fieldOfView / 2));
@@ -137,7 +158,38 @@ PointSource drawnPoints(std::span<const TracedScene> scenes) {
     };
 }
 
+bool embreeCanTrace(const Vec3& origin, const Vec3& direction) {
+    return within(origin, 1e18) && within(direction, 1e18);
+}
+
+// Values no picture can be made from, refused before any geometry reaches Embree.
+void checkCamera(const Camera& c) {
+    // A fitted parallel view takes only the direction from viewpoint to target: those may be
+    // far out, as long as their difference is a finite vector.
+    const bool directionOnly = c.orthographic && c.fitWindow && c.viewpoint && c.target;
+    const double limit = directionOnly ? 1e150 : kFarthest;
+    if (c.viewpoint && !within(*c.viewpoint, limit))
+        throw cameraError("the viewpoint " + formatPoint(*c.viewpoint) +
+                          " is not a finite point within " + (directionOnly ? "1e150" : "1e15") +
+                          " of the origin (the ray tracer "
+                          "cannot aim from there): give a nearer one (--viewpoint, or "
+                          "`viewpoint:` in the view file)");
+    if (c.target && !within(*c.target, limit))
+        throw cameraError("the view's target " + formatPoint(*c.target) +
+                          " is not a finite point within " + (directionOnly ? "1e150" : "1e15") +
+                          " of the origin: give a nearer one "
+                          "(--target, or `view reference point:` in the view file)");
+    if (!within(c.up, kFarthest) || !(length(c.up) > 0))
+        throw cameraError("the camera's up vector " + formatPoint(c.up) +
+                          " must be finite and not zero (--up, or `up vector:` in the view "
+                          "file)");
+    if (!(c.fieldOfView > 0 && c.fieldOfView < 180))
+        throw cameraError("the field of view must be between 0 and 180 degrees (--fov, or "
+                          "`field of view:` in the view file)");
+}
+
 Camera frameCamera(const Camera& c, const PointSource& points, int width, int height) {
+    checkCamera(c);
     Camera framed = c;
     const bool directionOnly = c.orthographic && c.fitWindow && c.viewpoint && c.target &&
                                length(*c.target - *c.viewpoint) > 0;
@@ -244,6 +296,7 @@ Camera frameCamera(const Camera& c, const PointSource& points, int width, int he
 }
 
 View makeView(const Camera& c, const PointSource& points, int width, int height) {
+    checkCamera(c);
     const Vec3 worldUp = unitOrZero(c.up);
     const double aspect = static_cast<double>(width) / height;
     const double tanHalfV = tanHalfVertical(c);
@@ -272,6 +325,13 @@ View makeView(const Camera& c, const PointSource& points, int width, int height)
         });
         view.orthographicBackOff = -nearest * 1.001 + 1e-6 * distance;
     }
+    // A scene too large (or a camera framed too far back for it) leaves the range too.
+    const double reach = (c.orthographic ? std::abs(view.orthographicBackOff) : 0) +
+                         length(view.right) + length(view.up) + length(view.forward);
+    if (!within(view.eye, kFarthest) || !std::isfinite(reach) || reach > kFarthest)
+        throw cameraError("the camera would stand at " + formatPoint(view.eye) +
+                          ", not within 1e15 of the origin: the scene is too large for the ray "
+                          "tracer (lower the steps or the lengths) or the viewpoint too far");
     return view;
 }
 

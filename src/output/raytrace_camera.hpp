@@ -16,6 +16,16 @@ using PointSource = std::function<void(const PointVisitor&)>;
 // The points of the scenes as drawn (forEachDrawnPoint), as one source.
 PointSource drawnPoints(std::span<const TracedScene> scenes);
 
+// Throws Error for camera values no picture can be made from: a viewpoint or target that is
+// not finite or lies farther than 1e15 from the origin (Embree's rays are floats), an up
+// vector that is not finite or zero, a field of view outside (0, 180) degrees.
+void checkCamera(const Camera& camera);
+
+// True when Embree takes a ray from `origin` along `direction`: both finite and, as floats,
+// within its assertion's range (1.8e18). A ray from a point found without Embree (the
+// ground plane hit at a grazing angle, 1e180 away) may not be.
+bool embreeCanTrace(const Vec3& origin, const Vec3& direction);
+
 // The camera with its unset viewpoint and target chosen to frame the points: the projected
 // extent of the hull of the balls fills kFrameFill of the picture's width or height (the
 // tighter one) and is centred in the other. A given target stays the picture's centre.

@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "graftal/diagnostics.hpp"
+#include "raytrace_camera.hpp"
 
 namespace graftal {
 
@@ -278,6 +279,7 @@ void EmbreeScene::addInstances() {
 
 bool EmbreeScene::intersect(const Vec3& origin, const Vec3& direction, double far,
                             SurfaceHit& hit) const {
+    if (!embreeCanTrace(origin, direction)) return false;  // nothing met out there
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit rh;
@@ -292,6 +294,7 @@ bool EmbreeScene::intersect(const Vec3& origin, const Vec3& direction, double fa
 }
 
 bool EmbreeScene::occluded(const Vec3& origin, const Vec3& direction, double far) const {
+    if (!embreeCanTrace(origin, direction)) return false;  // nothing shades it out there
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRay ray;

@@ -50,6 +50,7 @@ ExportRequest pipelineRequest(const ModelInput& input, const StudioLimits& limit
     ExportRequest request;
     request.steps = input.steps;
     request.maxSteps = limits.maxSteps;
+    request.audio.memoryLimit = limits.memoryLimit;
     request.sourceFile = input.file;
     request.memoryLimit = limits.memoryLimit;
     request.streamLimit = limits.streamLimit;

@@ -7,8 +7,11 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
+#include <charconv>
 #include <chrono>
 #include <cstring>
+#include <limits>
 #include <fstream>
 #include <map>
 #include <mutex>
@@ -17,6 +20,7 @@
 
 #include "graftal/atomic_file.hpp"
 #include "graftal/file_format.hpp"
+#include "studio/studio_guard.hpp"
 #include "studio/studio_sessions.hpp"
 
 namespace graftal::studio {
@@ -25,12 +29,6 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-
-// A request the page should not have sent (bad JSON, a missing field): 400.
-class BadRequest : public std::runtime_error {
-  public:
-    using std::runtime_error::runtime_error;
-};
 
 void sendJson(httplib::Response& res, const json& body, int status = 200) {
     res.status = status;
@@ -125,7 +123,14 @@ struct StudioServer::Impl {
     std::mutex thumbnailMutex;  // one thumbnail at a time: the live view comes first
     std::map<std::string, std::pair<std::int64_t, std::string>> thumbnails;
 
-    explicit Impl(StudioOptions o) : options(std::move(o)), root(options.root) {
+    DerivationGate gate;
+
+    explicit Impl(StudioOptions o)
+        : options(std::move(o)),
+          root(options.root),
+          gate(std::max(1, options.maxDerivations), options.memoryBudget) {
+        if (options.requireToken && options.token.empty()) options.token = randomToken();
+        if (!options.requireToken) options.token.clear();
         scratch =
             fs::temp_directory_path() / ("graftal-studio-" + std::to_string(::getpid()) + "-" +
                                          std::to_string(reinterpret_cast<std::uintptr_t>(this)));
@@ -154,6 +159,8 @@ struct StudioServer::Impl {
                 sendError(res, 422, e.messages(), e.diagnostics());
             } catch (const BadRequest& e) {
                 sendError(res, 400, e.what());
+            } catch (const Busy& e) {
+                sendError(res, 503, e.what());
             } catch (const std::bad_alloc&) {
                 sendError(res, 507, "out of memory: lower the steps");
             } catch (const std::exception& e) {
@@ -175,20 +182,19 @@ struct StudioServer::Impl {
         // Its view file, when the root lets the studio read it.
         input.viewFile = viewFileOf(input.file);
         if (!input.viewFile.empty()) input.viewText = readFile(input.viewFile);
-        if (body.contains("steps") && !body["steps"].is_null()) {
-            if (!body["steps"].is_number_integer())
-                throw BadRequest("\"steps\" must be a whole number");
-            const int steps = body["steps"].get<int>();
-            if (steps < 0) throw BadRequest("\"steps\" may not be negative");
-            input.steps = steps;
-        }
+        // Never narrowed: a number past an int is refused here, one past the studio's
+        // limit by the derivation (with the limit in its message).
+        if (body.contains("steps") && !body["steps"].is_null())
+            input.steps = static_cast<int>(
+                integerField(body, "steps", 0, std::numeric_limits<int>::max()));
         if (body.contains("defines") && body["defines"].is_object()) {
             if (body["defines"].size() > 200) throw BadRequest("too many defines");
             for (const auto& [name, value] : body["defines"].items()) {
                 if (!isIdentifier(name)) throw BadRequest("'" + name + "' is not a define's name");
-                if (value.is_number())
+                if (value.is_number()) {
+                    numberField(value, name, -1e300, 1e300);  // finite, as the text's would be
                     input.defines[name] = value.dump();
-                else if (value.is_string() && value.get<std::string>().size() < 200)
+                } else if (value.is_string() && value.get<std::string>().size() < 200)
                     input.defines[name] = value.get<std::string>();
                 else
                     throw BadRequest("the define " + name + " needs a number");
@@ -224,7 +230,68 @@ struct StudioServer::Impl {
                        }
                        res.set_content(readFile(path), type);
                        res.set_header("Cache-Control", "no-cache");
+                       // The page's own requests (and its thumbnails' <img>) carry the token
+                       // as a cookie that no other site's page is sent.
+                       if (!options.token.empty() && file == "index.html")
+                           res.set_header("Set-Cookie", cookieName() + "=" + options.token +
+                                                            "; Path=/; HttpOnly; SameSite=Strict");
                    }));
+    }
+
+    // A slot and a share of the memory budget for one derivation, and the limits it runs
+    // under (its memory limit is its share).
+    DerivationGate::Pass enterGate(const CancellationToken& token, StudioLimits& limits) {
+        DerivationGate::Pass pass =
+            gate.enter(limits.memoryLimit, limits.memoryLimit / 4, token,
+                       std::chrono::milliseconds(options.busyWaitMilliseconds));
+        limits.memoryLimit = pass.bytes();
+        return pass;
+    }
+
+    std::string cookieName() const { return "graftal-studio-" + std::to_string(port); }
+
+    // The request carries this run's token (or none is required).
+    bool authorised(const httplib::Request& req) const {
+        if (options.token.empty()) return true;
+        return sameSecret(req.get_param_value("token"), options.token) ||
+               sameSecret(req.get_header_value("X-Graftal-Token"), options.token) ||
+               sameSecret(cookieValue(req.get_header_value("Cookie"), cookieName()),
+                          options.token);
+    }
+
+    // Refuses what a studio should not answer before its body is read: another host (DNS
+    // rebinding), another site's page (Origin), a request without the token, and a chunked
+    // body (its length is not known before reading it; the page always sends a length).
+    bool refused(const httplib::Request& req, httplib::Response& res) const {
+        const std::string host = req.get_header_value("Host");
+        const std::string p = ":" + std::to_string(port);
+        if (host != "127.0.0.1" + p && host != "localhost" + p) {
+            sendError(res, 403, "the studio answers only 127.0.0.1 and localhost");
+            return true;
+        }
+        if (req.has_header("Origin") && !isOwnOrigin(req.get_header_value("Origin"), port)) {
+            sendError(res, 403,
+                      "the studio answers only its own page, not one from " +
+                          req.get_header_value("Origin").substr(0, 100));
+            return true;
+        }
+        const bool asset = req.path == "/studio.js" || req.path == "/studio.css";
+        if (!asset && !authorised(req)) {
+            sendError(res, 403,
+                      "this studio needs its token: open the address `graftal studio` printed "
+                      "(http://127.0.0.1" + p + "/?token=...)");
+            return true;
+        }
+        std::string encoding = req.get_header_value("Transfer-Encoding");
+        for (char& c : encoding) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        if (encoding.find("chunked") != std::string::npos) {
+            sendError(res, 411,
+                      "the studio reads a body only with its Content-Length (at most " +
+                          std::to_string(options.limits.bodyBytes) + " bytes), not chunked");
+            res.set_header("Connection", "close");
+            return true;
+        }
+        return false;
     }
 
     void routes() {
@@ -238,12 +305,8 @@ struct StudioServer::Impl {
         // Only this machine's own pages: a page of another site that points a name at
         // 127.0.0.1 (DNS rebinding) names its own host.
         server.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
-            const std::string host = req.get_header_value("Host");
-            const std::string p = ":" + std::to_string(port);
-            if (host == "127.0.0.1" + p || host == "localhost" + p)
-                return httplib::Server::HandlerResponse::Unhandled;
-            sendError(res, 403, "the studio answers only 127.0.0.1 and localhost");
-            return httplib::Server::HandlerResponse::Handled;
+            return refused(req, res) ? httplib::Server::HandlerResponse::Handled
+                                     : httplib::Server::HandlerResponse::Unhandled;
         });
 
         serveAsset("/", "index.html", "text/html; charset=utf-8");
@@ -294,8 +357,15 @@ struct StudioServer::Impl {
         server.Get(
             "/api/watch", guarded([this](const httplib::Request& req, httplib::Response& res) {
                 const fs::path path = root.resolve(req.get_param_value("path"), true);
-                const std::int64_t since =
-                    req.has_param("since") ? std::stoll(req.get_param_value("since")) : 0;
+                std::int64_t since = 0;
+                if (req.has_param("since")) {
+                    const std::string text = req.get_param_value("since");
+                    const auto [end, ec] =
+                        std::from_chars(text.data(), text.data() + text.size(), since);
+                    if (ec != std::errc() || end != text.data() + text.size())
+                        throw BadRequest("\"since\" must be a file time in microseconds (a "
+                                         "whole number), got '" + text.substr(0, 40) + "'");
+                }
                 const auto until = std::chrono::steady_clock::now() +
                                    std::chrono::milliseconds(options.watchMilliseconds);
                 std::int64_t now = modificationTime(path);
@@ -342,9 +412,11 @@ struct StudioServer::Impl {
                 const bool unchanged = reused && body.value("have", "") == tag;
                 if (!picture) {
                     LiveRequest live(liveRequests);
+                    StudioLimits limits = options.limits;
+                    const DerivationGate::Pass pass = enterGate(token, limits);
                     try {
                         picture = std::make_shared<StudioPicture>(derivePicture(
-                            input, std::move(parsed.model), options.limits, token, scratch));
+                            input, std::move(parsed.model), limits, token, scratch));
                     } catch (const Cancelled&) {
                         throw;
                     } catch (const Error& e) {  // the turtle's, the limits': with the report
@@ -400,8 +472,10 @@ struct StudioServer::Impl {
                         if (!picture) {
                             const CancellationToken token = sessions.begin(session);
                             LiveRequest live(liveRequests);
+                            StudioLimits limits = options.limits;
+                            const DerivationGate::Pass pass = enterGate(token, limits);
                             picture = std::make_shared<StudioPicture>(
-                                derivePicture(input, options.limits, token, scratch));
+                                derivePicture(input, limits, token, scratch));
                         }
                         if (!picture->summaryPng.empty() ||
                             picture->segments > options.limits.meshSegmentBudget) {
@@ -423,7 +497,9 @@ struct StudioServer::Impl {
                 if (std::find(formats.begin(), formats.end(), format) == formats.end())
                     throw BadRequest("unknown export format '" + format.substr(0, 20) + "'");
                 const CancellationToken token = sessions.begin(sessionOf(body) + "/export");
-                ExportedFile file = exportFile(input, format, options.limits, token, scratch);
+                StudioLimits limits = options.limits;
+                const DerivationGate::Pass pass = enterGate(token, limits);
+                ExportedFile file = exportFile(input, format, limits, token, scratch);
                 res.set_header("Content-Disposition",
                                "attachment; filename=\"" + file.fileName + "\"");
                 res.set_content(std::move(file.bytes),
@@ -448,6 +524,8 @@ struct StudioServer::Impl {
                            limits.memoryLimit =
                                std::min<std::size_t>(limits.memoryLimit, std::size_t(256) << 20);
                            limits.deriveSeconds = 20;
+                           const DerivationGate::Pass pass =
+                               enterGate(CancellationToken{}, limits);
                            thumbnails[rel] = {
                                mtime, thumbnailPng(path, viewFileOf(path), 160, limits, scratch)};
                            it = thumbnails.find(rel);
@@ -483,6 +561,10 @@ int StudioServer::start(int port) {
 
 void StudioServer::wait() {
     if (impl_->thread.joinable()) impl_->thread.join();
+}
+
+const std::string& StudioServer::token() const {
+    return impl_->options.token;
 }
 
 void StudioServer::stop() {

@@ -3,6 +3,14 @@
 
 export const session = Math.random().toString(36).slice(2);
 
+// This run's secret, from the address `graftal studio` opened (?token=...). The server set
+// it as a cookie too when it served the page; the header keeps requests working where
+// cookies for 127.0.0.1 are not kept.
+const token = new URLSearchParams(location.search).get('token') || '';
+const tokenHeader = token ? { 'X-Graftal-Token': token } : {};
+const call = (url, init = {}) =>
+  fetch(url, { ...init, headers: { ...tokenHeader, ...(init.headers || {}) } });
+
 async function failure(res) {
   let body = {};
   try { body = await res.json(); } catch { body = { error: res.statusText }; }
@@ -15,13 +23,13 @@ async function failure(res) {
 }
 
 async function getJson(url) {
-  const res = await fetch(url);
+  const res = await call(url);
   if (!res.ok) throw await failure(res);
   return res.json();
 }
 
 async function post(url, body) {
-  const res = await fetch(url, {
+  const res = await call(url, {
     method: 'POST',
     headers: { 'Content-Type': 'application/json' },
     body: JSON.stringify({ session, ...body }),
@@ -35,7 +43,7 @@ export const readFile = (path) => getJson('/api/file?path=' + encodeURIComponent
 export const info = () => getJson('/api/info');
 
 export async function writeFile(path, text) {
-  const res = await fetch('/api/file?path=' + encodeURIComponent(path), { method: 'PUT', body: text });
+  const res = await call('/api/file?path=' + encodeURIComponent(path), { method: 'PUT', body: text });
   if (!res.ok) throw await failure(res);
   return res.json();
 }

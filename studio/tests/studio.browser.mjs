@@ -34,12 +34,16 @@ const address = await new Promise((resolve, reject) => {
   let out = '';
   server.stdout.on('data', (d) => {
     out += d;
-    const m = /http:\/\/127\.0\.0\.1:\d+\//.exec(out);
+    const m = /http:\/\/127\.0\.0\.1:\d+\/(\?token=[0-9a-f]+)?(?=\s)/.exec(out);
     if (m) resolve(m[0]);
   });
   server.on('exit', (code) => reject(new Error('graftal studio exited with ' + code)));
   setTimeout(() => reject(new Error('graftal studio printed no address')), 15000);
 });
+
+// The studio answers only requests carrying this run's token (docs/reliability.md).
+assert.match(address, /\?token=[0-9a-f]{32}/);
+assert.equal((await fetch(new URL('/api/files', address))).status, 403);
 
 // playwright starts chromium with a fresh, empty profile of its own (--user-data-dir).
 let browser;
