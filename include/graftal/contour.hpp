@@ -16,6 +16,8 @@ namespace graftal {
 struct Contour {
     int id = 0;
     std::string name;  // the file's `name:` line, or the file name
+    // The file as a view file's `contour: ID FILE` line names it (empty for a contour set's).
+    std::string file;
     bool closed = true;
     std::vector<Vec3> controlPoints;  // x, y across the cylinder (z is read, not drawn)
 };

@@ -141,8 +141,8 @@ DerivationDiagram animatedDiagram(const Model& model, const AnimationRequest& re
     RenderOptions o = request.picture;
     if (request.background)
         o.background = *request.background;
-    else if (model.view.background)
-        o.background = *model.view.background;
+    else if (model.view.camera.background)
+        o.background = *model.view.camera.background;
     DerivationDiagram d = layoutDerivationDiagram(strings, model.lsystem.symbols, o);
     for (DiagramRow& row : d.rows) row.step += request.from;
     return d;
@@ -168,7 +168,7 @@ class Sequence {
         }
         derivation.finish();
         folder_ = sourceFolder(model, request);
-        if (!model.view.colorMap.empty()) colorMap_ = loadColorMap(folder_ / model.view.colorMap);
+        if (!model.view.materials.colorMap.empty()) colorMap_ = loadColorMap(folder_ / model.view.materials.colorMap);
     }
 
     bool continuous() const { return !ages_.empty(); }
@@ -185,7 +185,7 @@ class Sequence {
                 applyHomomorphism(model_.lsystem, agedString(modules, ages_, fraction), options));
         else
             scene = interpret(model_, applyHomomorphism(model_.lsystem, modules, options));
-        if (int n = request_.spline.value_or(model_.view.splineSubdivisions); n > 0)
+        if (int n = request_.spline.value_or(model_.view.kolam.splineSubdivisions); n > 0)
             scene = smoothSegments(scene, n);
         if (colorMap_) scene.palette = *colorMap_;
         return scene;
@@ -375,15 +375,15 @@ AnimationResult animate(const Model& model, const AnimationRequest& request,
         if (s) sceneBounds.extend(s->bounds());
     SurfaceLibrary surfaces = surfacesFor(model.view, sequence.folder());
     std::optional<std::vector<Rgb>> materials;
-    if (!model.view.materialFile.empty())
-        materials = materialPalette(loadMaterials(sequence.folder() / model.view.materialFile));
+    if (!model.view.materials.materialFile.empty())
+        materials = materialPalette(loadMaterials(sequence.folder() / model.view.materials.materialFile));
     MeshOptions mo;
     // The view file's `cylinder sides:` unless --tube-sides was given.
     mo.tubeSides = request.tubeSides != AnimationRequest{}.tubeSides
                        ? request.tubeSides
-                       : model.view.tubeSides.value_or(request.tubeSides);
+                       : model.view.materials.tubeSides.value_or(request.tubeSides);
     mo.surfaceDivisions = request.surfaceDivisions;
-    mo.cylinders = model.view.lineStyle == LineStyle::Cylinders;
+    mo.cylinders = model.view.materials.lineStyle == LineStyle::Cylinders;
     // Thin stems as in render(), for the pixel size of the camera framed on every frame.
     setPictureRadii(mo, sceneBounds, options);
     std::vector<std::optional<MeshScene>> meshes(scenes.size());
@@ -393,7 +393,7 @@ AnimationResult animate(const Model& model, const AnimationRequest& request,
         if (!scenes[k]) continue;
         request.cancel.check();
         Scene& scene = *scenes[k];
-        if (model.view.colorMap.empty()) scene.palette = defaultPalette3D();
+        if (model.view.materials.colorMap.empty()) scene.palette = defaultPalette3D();
         if (materials) scene.palette = *materials;
         meshes[k] = buildMeshScene(scene, mo, &surfaces);
         scene = Scene{};

@@ -41,7 +41,7 @@ std::filesystem::path sourceFolder(const Model& model, const RenderRequest& requ
 // name without a file on disk falls back to the built-in surfaces (leaf, petal).
 SurfaceLibrary surfacesFor(const ViewSettings& view, const std::filesystem::path& dir) {
     SurfaceLibrary lib = SurfaceLibrary::builtin();
-    for (const auto& decl : view.surfaces) {
+    for (const auto& decl : view.materials.surfaces) {
         std::filesystem::path path = dir / decl.file;
         Surface s;
         if (std::filesystem::exists(path)) {
@@ -69,30 +69,30 @@ RaytraceOptions raytraceOptions(const ViewSettings& v, const RenderRequest& requ
     r.samplesPerPixel = request.samplesPerPixel;
     r.threads = request.threads;
     r.background = request.background ? *request.background
-                                      : v.background.value_or(request.picture.background);
-    r.camera.viewpoint = request.viewpoint ? request.viewpoint : v.viewpoint;
-    r.camera.target = request.target ? request.target : v.viewReferencePoint;
-    if (auto up = request.up ? request.up : v.upVector) r.camera.up = *up;
-    if (v.twistDegrees != 0 && !request.up) {
+                                      : v.camera.background.value_or(request.picture.background);
+    r.camera.viewpoint = request.viewpoint ? request.viewpoint : v.camera.viewpoint;
+    r.camera.target = request.target ? request.target : v.camera.referencePoint;
+    if (auto up = request.up ? request.up : v.camera.upVector) r.camera.up = *up;
+    if (v.camera.twistDegrees != 0 && !request.up) {
         // cpfg's twist turns the camera about its viewing direction: 45 degrees turns the up
         // vector (0,1,0) of a camera looking along -z to (-0.71,0.71,0), as cpfg writes it.
         Vec3 d{0, 0, -1};
         if (r.camera.viewpoint && r.camera.target)
             d = normalizedOr(*r.camera.target - *r.camera.viewpoint, d);
-        const double a = v.twistDegrees * 3.14159265358979323846 / 180.0;
+        const double a = v.camera.twistDegrees * 3.14159265358979323846 / 180.0;
         const Vec3 u = r.camera.up;
         r.camera.up =
             u * std::cos(a) - cross(d, u) * std::sin(a) + d * (dot(d, u) * (1 - std::cos(a)));
     }
-    if (auto fov = request.fieldOfView ? request.fieldOfView : v.fieldOfView)
+    if (auto fov = request.fieldOfView ? request.fieldOfView : v.camera.fieldOfView)
         r.camera.fieldOfView = *fov;
-    r.camera.orthographic = v.parallelProjection;
-    r.camera.fitWindow = v.parallelProjection && !request.viewpoint && !request.target;
-    if (auto light = request.light ? request.light : v.lightDirection)
+    r.camera.orthographic = v.camera.parallelProjection;
+    r.camera.fitWindow = v.camera.parallelProjection && !request.viewpoint && !request.target;
+    if (auto light = request.light ? request.light : v.camera.lightDirection)
         r.lighting.sunDirection = *light;
     r.ground = request.ground;
-    if (v.lightIntensity) r.lighting.sunIntensity = 0.9 * *v.lightIntensity;
-    if (v.skyIntensity) r.lighting.skyIntensity = *v.skyIntensity;
+    if (v.camera.lightIntensity) r.lighting.sunIntensity = 0.9 * *v.camera.lightIntensity;
+    if (v.camera.skyIntensity) r.lighting.skyIntensity = *v.camera.skyIntensity;
     return r;
 }
 
@@ -117,12 +117,12 @@ void setPictureRadii(MeshOptions& mo, const Bounds& bounds, const RaytraceOption
 // (100 = all of it), and the file's background applies unless the request overrides it.
 RenderOptions lineArtOptions(const Model& model, const RenderRequest& request) {
     RenderOptions render = request.picture;
-    double fill = std::clamp(model.view.scaleFactor / 100.0, 0.01, 1.0);
+    double fill = std::clamp(model.view.camera.scaleFactor / 100.0, 0.01, 1.0);
     render.margin = 0.5 - (0.5 - render.margin) * fill;
     if (request.background)
         render.background = *request.background;
-    else if (model.view.background)
-        render.background = *model.view.background;
+    else if (model.view.camera.background)
+        render.background = *model.view.camera.background;
     return render;
 }
 
@@ -140,8 +140,8 @@ void renderDerivation(const Model& model, int steps, const RenderRequest& reques
     RenderOptions render = request.picture;
     if (request.background)
         render.background = *request.background;
-    else if (model.view.background)
-        render.background = *model.view.background;
+    else if (model.view.camera.background)
+        render.background = *model.view.camera.background;
     request.cancel.check();
     writeDerivationDiagram(strings, model.lsystem.symbols, render, request.output);
 }
@@ -265,8 +265,8 @@ FileFormat checkRenderRequest(const RenderRequest& request) {
 }
 
 Scene sceneForRender(const Model& model, ModuleString shown, const RenderRequest& request) {
-    const bool path = request.splinePath.value_or(model.view.splineMode == SplineMode::Path);
-    int subdivisions = request.spline.value_or(model.view.splineSubdivisions);
+    const bool path = request.splinePath.value_or(model.view.kolam.splineMode == SplineMode::Path);
+    int subdivisions = request.spline.value_or(model.view.kolam.splineSubdivisions);
     if (request.splinePath.value_or(false) && !request.spline && subdivisions == 0)
         subdivisions = 8;
     // The kolams' B-spline runs through every position of the turtle, f moves included
@@ -276,8 +276,8 @@ Scene sceneForRender(const Model& model, ModuleString shown, const RenderRequest
             if (s == 'f') s = 'F';
     Scene scene = interpret(model, shown);
     shown = ModuleString{};
-    if (request.kolamDots || model.view.kolamDots)
-        addKolamDots(scene, model.view.stepLength, 0.08 * model.view.stepLength);
+    if (request.kolamDots || model.view.kolam.dots)
+        addKolamDots(scene, model.view.turtle.stepLength, 0.08 * model.view.turtle.stepLength);
     if (subdivisions > 0) scene = smoothSegments(scene, subdivisions);
     return scene;
 }
@@ -306,13 +306,13 @@ RenderResult render(const Model& model, const RenderRequest& request) {
         // A picture with many strokes per pixel is drawn from its subtree summaries even when
         // its string would fit: its time then grows with the image, not with the string.
         // (The streamed picture has neither colour maps nor splines.)
-        const bool plainLines = model.view.colorMap.empty() &&
-                                request.spline.value_or(model.view.splineSubdivisions) <= 0;
+        const bool plainLines = model.view.materials.colorMap.empty() &&
+                                request.spline.value_or(model.view.kolam.splineSubdivisions) <= 0;
         if ((pixelBound && plainLines) ||
             shouldStream(model, steps, request, png2D, true, pixelBound, result.notes)) {
             warnLineArtIgnores(result, request, model, false);
             RenderOptions render = request.picture;
-            double fill = std::clamp(model.view.scaleFactor / 100.0, 0.01, 1.0);
+            double fill = std::clamp(model.view.camera.scaleFactor / 100.0, 0.01, 1.0);
             render.margin = 0.5 - (0.5 - render.margin) * fill;
             renderStreamedPng(model, steps, derivationOptions(model, request), render, output);
             result.route = RenderRoute::StreamedPicture;
@@ -328,7 +328,7 @@ RenderResult render(const Model& model, const RenderRequest& request) {
     Scene scene = sceneForRender(model, std::move(shown), request);
     modules = ModuleString{};
     const std::filesystem::path folder = sourceFolder(model, request);
-    if (!model.view.colorMap.empty()) scene.palette = loadColorMap(folder / model.view.colorMap);
+    if (!model.view.materials.colorMap.empty()) scene.palette = loadColorMap(folder / model.view.materials.colorMap);
 
     if (picture && scene.segments.empty() && scene.polygonCount() == 0 && scene.surfaces.empty() &&
         scene.discs.empty() && scene.spheres.empty()) {
@@ -367,9 +367,9 @@ RenderResult render(const Model& model, const RenderRequest& request) {
                     "instancing and compression settings apply to .glb files only; ignored",
                     glbSettingsGiven(request));
     // Uncoloured 3D plants are bark brown, not line art's ink, so their shading shows.
-    if (model.view.colorMap.empty()) scene.palette = defaultPalette3D();
-    if (!model.view.materialFile.empty())
-        scene.palette = materialPalette(loadMaterials(folder / model.view.materialFile));
+    if (model.view.materials.colorMap.empty()) scene.palette = defaultPalette3D();
+    if (!model.view.materials.materialFile.empty())
+        scene.palette = materialPalette(loadMaterials(folder / model.view.materials.materialFile));
     SurfaceLibrary surfaces = surfacesFor(model.view, folder);
     // cpfg draws nothing for a `~X` no `surface:` line declares: said, not an error.
     for (const std::string& name : removeUnknownSurfaces(scene, surfaces))
@@ -380,9 +380,9 @@ RenderResult render(const Model& model, const RenderRequest& request) {
     // The view file's `cylinder sides:` unless --tube-sides was given.
     mo.tubeSides = request.tubeSides != RenderRequest{}.tubeSides
                        ? request.tubeSides
-                       : model.view.tubeSides.value_or(request.tubeSides);
+                       : model.view.materials.tubeSides.value_or(request.tubeSides);
     mo.surfaceDivisions = request.surfaceDivisions;
-    mo.cylinders = model.view.lineStyle == LineStyle::Cylinders;
+    mo.cylinders = model.view.materials.lineStyle == LineStyle::Cylinders;
     if (picture) setPictureRadii(mo, scene.bounds(), raytraceOptions(model.view, request));
     const MeshScene mesh = buildMeshScene(scene, mo, &surfaces);
     scene = Scene{};  // the meshes hold everything now: its memory goes before the render

@@ -97,7 +97,7 @@ nlohmann::json boundsJson(const Bounds& b) {
 // (as render() does).
 SurfaceLibrary surfacesFor(const ViewSettings& view, const fs::path& folder) {
     SurfaceLibrary lib = SurfaceLibrary::builtin();
-    for (const auto& decl : view.surfaces) {
+    for (const auto& decl : view.materials.surfaces) {
         Surface s;
         const fs::path path = folder / decl.file;
         if (fs::exists(path)) {
@@ -138,10 +138,10 @@ void returnWorkspace(std::unique_ptr<PolylineScene> w) {
 // coloured as the view file says.
 Scene sceneOf(const Model& model, const ModuleString& modules) {
     Scene scene = interpret(model, modules);
-    if (int n = model.view.splineSubdivisions; n > 0) scene = smoothSegments(scene, n);
-    if (!model.view.colorMap.empty())
+    if (int n = model.view.kolam.splineSubdivisions; n > 0) scene = smoothSegments(scene, n);
+    if (!model.view.materials.colorMap.empty())
         scene.palette =
-            loadColorMap(fs::path(model.lsystem.file).parent_path() / model.view.colorMap);
+            loadColorMap(fs::path(model.lsystem.file).parent_path() / model.view.materials.colorMap);
     return scene;
 }
 
@@ -318,7 +318,7 @@ StudioPicture derivePicture(const ModelInput& input, Model parsed, const StudioL
     // bytes a segment, no fresh pages); a smoothed model needs the scene's segments.
     const auto drawStart = Clock::now();
     std::unique_ptr<PolylineScene> lines = takeWorkspace();
-    if (model.view.splineSubdivisions > 0) {
+    if (model.view.kolam.splineSubdivisions > 0) {
         const Scene scene = sceneOf(model, modules);
         lines->clear();
         lines->rest = scene;  // the summary and the stats read it; encoded as a scene
@@ -326,8 +326,8 @@ StudioPicture derivePicture(const ModelInput& input, Model parsed, const StudioL
         lines->segmentBounds = scene.bounds();
     } else {
         interpretPolylines(model, modules, *lines);
-        if (!model.view.colorMap.empty())
-            lines->rest.palette = loadColorMap(input.file.parent_path() / model.view.colorMap);
+        if (!model.view.materials.colorMap.empty())
+            lines->rest.palette = loadColorMap(input.file.parent_path() / model.view.materials.colorMap);
     }
     const double drawMs = millisecondsSince(drawStart);
     cancel.check();
@@ -349,7 +349,7 @@ StudioPicture derivePicture(const ModelInput& input, Model parsed, const StudioL
         // Over the budget the browser gets a picture, not the segments.
         const Scene scene = sceneOf(model, modules);
         RenderOptions render;
-        if (model.view.background) render.background = *model.view.background;
+        if (model.view.camera.background) render.background = *model.view.camera.background;
         const fs::path png = scratchFile(scratch, "png");
         writeImage(scene.is3D ? projectScene(scene, ViewDirection::Front) : scene, render, png);
         picture.summaryPng = readAndRemove(png);
@@ -374,7 +374,7 @@ Scene pictureScene(const StudioPicture& picture) {
 
 std::string meshGlb(const StudioPicture& picture, const fs::path& scratch) {
     Scene scene = pictureScene(picture);
-    if (picture.model.view.colorMap.empty()) scene.palette = defaultPalette3D();
+    if (picture.model.view.materials.colorMap.empty()) scene.palette = defaultPalette3D();
     const SurfaceLibrary surfaces =
         surfacesFor(picture.model.view, fs::path(picture.model.lsystem.file).parent_path());
     MeshOptions options;
