@@ -38,16 +38,14 @@ ParseResult reparse(const Model& model, const fs::path& file) {
     ParseOptions options;
     options.fileName = file.string();
     if (viewText.str().empty()) return parse(lText.str(), options);
-    return parse(lText.str(), viewText.str(), (file.parent_path() / "printed.v").string(),
-                 options);
+    return parse(lText.str(), viewText.str(), (file.parent_path() / "printed.v").string(), options);
 }
 
 std::vector<fs::path> exampleFiles() {
     std::vector<fs::path> files;
     for (const auto& e : fs::directory_iterator(GRAFTAL_EXAMPLES_DIR))
         // Map L-systems (docs/maps.md) have a reader of their own and no view settings.
-        if (e.path().extension() == ".l" && !isMapLSystemFile(e.path()))
-            files.push_back(e.path());
+        if (e.path().extension() == ".l" && !isMapLSystemFile(e.path())) files.push_back(e.path());
     std::sort(files.begin(), files.end());
     return files;
 }

@@ -73,8 +73,8 @@ struct CameraSettings {
     std::optional<Vec3> viewpoint, referencePoint, upVector;
     std::optional<double> fieldOfView;  // degrees
     bool parallelProjection = false;
-    double twistDegrees = 0;    // turns the camera about its viewing direction
-    double scaleFactor = 100;   // pfg's picture size in percent of the window
+    double twistDegrees = 0;   // turns the camera about its viewing direction
+    double scaleFactor = 100;  // pfg's picture size in percent of the window
     std::optional<Vec3> lightDirection;
     // A view file's first `light:` line: D: (diffuse) the sun's strength, A: (ambient) the
     // sky's; the ray tracer's full sun (0.9) is D: 1 1 1.
@@ -112,7 +112,7 @@ enum class SplineMode {
 
 // Smooth curves through the turtle's path (LSFP Fig 2.10) and kolams (LSFP 6.2).
 struct KolamSettings {
-    int splineSubdivisions = 0;  // > 0: draw turtle paths as B-splines
+    int splineSubdivisions = 0;                    // > 0: draw turtle paths as B-splines
     SplineMode splineMode = SplineMode::Segments;  // `spline: path` draws kolams
     bool dots = false;  // `kolam dots: on`: the grid of dots the kolam's loops surround
 };

@@ -151,7 +151,8 @@ void addFolderFiles(const std::filesystem::path& folder, ParseResult& result) {
                                           "the contour set " + problem});
         else
             try {
-                model.view.materials.contours = parseContourSet(contourText, contourSets[0].string());
+                model.view.materials.contours =
+                    parseContourSet(contourText, contourSets[0].string());
             } catch (const Error& e) {
                 for (const auto& d : e.diagnostics()) result.diagnostics.push_back(d);
             }

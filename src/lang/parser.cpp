@@ -44,8 +44,8 @@ std::string_view trimView(std::string_view s) {
 // then the view settings a .l file states (from their table), then the global blocks.
 const std::vector<std::string> kKeywords = [] {
     std::vector<std::string> k = {
-        "lsystem", "derivation length", "axiom", "ignore", "consider", "age", "seed",
-        "maximum depth", "table", "table schedule", "environment",
+        "lsystem", "derivation length", "axiom", "ignore",         "consider",    "age",
+        "seed",    "maximum depth",     "table", "table schedule", "environment",
     };
     for (const auto& name : lFileSettingNames()) k.push_back(name);
     for (const char* block : {"start", "starteach", "endeach", "end", "define"}) k.push_back(block);

@@ -168,7 +168,8 @@ class Sequence {
         }
         derivation.finish();
         folder_ = sourceFolder(model, request);
-        if (!model.view.materials.colorMap.empty()) colorMap_ = loadColorMap(folder_ / model.view.materials.colorMap);
+        if (!model.view.materials.colorMap.empty())
+            colorMap_ = loadColorMap(folder_ / model.view.materials.colorMap);
     }
 
     bool continuous() const { return !ages_.empty(); }
@@ -376,7 +377,8 @@ AnimationResult animate(const Model& model, const AnimationRequest& request,
     SurfaceLibrary surfaces = surfacesFor(model.view, sequence.folder());
     std::optional<std::vector<Rgb>> materials;
     if (!model.view.materials.materialFile.empty())
-        materials = materialPalette(loadMaterials(sequence.folder() / model.view.materials.materialFile));
+        materials =
+            materialPalette(loadMaterials(sequence.folder() / model.view.materials.materialFile));
     MeshOptions mo;
     // The view file's `cylinder sides:` unless --tube-sides was given.
     mo.tubeSides = request.tubeSides != AnimationRequest{}.tubeSides

@@ -328,7 +328,8 @@ RenderResult render(const Model& model, const RenderRequest& request) {
     Scene scene = sceneForRender(model, std::move(shown), request);
     modules = ModuleString{};
     const std::filesystem::path folder = sourceFolder(model, request);
-    if (!model.view.materials.colorMap.empty()) scene.palette = loadColorMap(folder / model.view.materials.colorMap);
+    if (!model.view.materials.colorMap.empty())
+        scene.palette = loadColorMap(folder / model.view.materials.colorMap);
 
     if (picture && scene.segments.empty() && scene.polygonCount() == 0 && scene.surfaces.empty() &&
         scene.discs.empty() && scene.spheres.empty()) {

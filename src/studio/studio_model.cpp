@@ -140,8 +140,8 @@ Scene sceneOf(const Model& model, const ModuleString& modules) {
     Scene scene = interpret(model, modules);
     if (int n = model.view.kolam.splineSubdivisions; n > 0) scene = smoothSegments(scene, n);
     if (!model.view.materials.colorMap.empty())
-        scene.palette =
-            loadColorMap(fs::path(model.lsystem.file).parent_path() / model.view.materials.colorMap);
+        scene.palette = loadColorMap(fs::path(model.lsystem.file).parent_path() /
+                                     model.view.materials.colorMap);
     return scene;
 }
 
@@ -327,7 +327,8 @@ StudioPicture derivePicture(const ModelInput& input, Model parsed, const StudioL
     } else {
         interpretPolylines(model, modules, *lines);
         if (!model.view.materials.colorMap.empty())
-            lines->rest.palette = loadColorMap(input.file.parent_path() / model.view.materials.colorMap);
+            lines->rest.palette =
+                loadColorMap(input.file.parent_path() / model.view.materials.colorMap);
     }
     const double drawMs = millisecondsSince(drawStart);
     cancel.check();
