@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "graftal/contour.hpp"
+#include "graftal/contour_shape.hpp"
 #include "graftal/diagnostics.hpp"
 #include "graftal/music_scale.hpp"
 #include "graftal/rgb.hpp"

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "graftal/contour.hpp"
 #include "graftal/file_reading.hpp"
 #include "graftal/parser_target.hpp"
 #include "graftal/view_file.hpp"
