@@ -70,7 +70,7 @@ TEST(CpfgLineWidth, TheViewFileSaysWhetherWidthsAreWorldUnits) {
     auto unit = [&](const std::string& v) {
         ParseResult r = loadWithView(dir, l, v);
         EXPECT_TRUE(r.ok()) << messages(r.diagnostics);
-        return r.model.view.widthsInModelUnits;
+        return r.model.view.materials.widthsInModelUnits;
     };
     EXPECT_TRUE(unit("initial line width: 1\n"));
     EXPECT_TRUE(unit("initial line width: 0.1 s\n"));

@@ -222,12 +222,12 @@ TEST(CpfgContourSets, AModelFolderGivesItsContourSetUnlessTheViewNamesContours) 
               "contourgalleryver 1 1\nitems: 1\ncver 1 1\nname: tri\npoints: 3 3\ntype: closed\n"
               "1 0 0 1\n0 1 0 1\n-1 0 0 1\n");
     Model m = loadModel(dir.path()).orThrow();
-    ASSERT_EQ(m.view.contours.size(), 1u);
-    EXPECT_EQ(m.view.contours[0].id, 1);
-    EXPECT_EQ(m.view.contours[0].name, "tri");
+    ASSERT_EQ(m.view.materials.contours.size(), 1u);
+    EXPECT_EQ(m.view.materials.contours[0].id, 1);
+    EXPECT_EQ(m.view.materials.contours[0].name, "tri");
     dir.write("one.con", "4 2 closed\n1 0\n0 1\n-1 0\n0 -1\n");
     dir.write("m.v", "contour: 3 one.con\n");
     Model v = loadModel(dir.path()).orThrow();
-    ASSERT_EQ(v.view.contours.size(), 1u);
-    EXPECT_EQ(v.view.contours[0].id, 3) << "the view file's contour, not the set";
+    ASSERT_EQ(v.view.materials.contours.size(), 1u);
+    EXPECT_EQ(v.view.materials.contours[0].id, 3) << "the view file's contour, not the set";
 }

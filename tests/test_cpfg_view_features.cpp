@@ -102,10 +102,10 @@ TEST(CpfgViewFile, CommentsAreSkipped) {
                                  "// viewpoint: 0,0,30\n");
     ASSERT_TRUE(r.ok()) << messages(r.diagnostics);
     EXPECT_TRUE(r.warnings().empty()) << messages(r.diagnostics);
-    EXPECT_DOUBLE_EQ(r.model.view.angleDegrees, 30);
-    EXPECT_EQ(r.model.view.lineStyle, LineStyle::Lines);
-    EXPECT_TRUE(r.model.view.surfaces.empty()) << "a commented-out surface is not read";
-    EXPECT_FALSE(r.model.view.viewpoint);
+    EXPECT_DOUBLE_EQ(r.model.view.turtle.angleDegrees, 30);
+    EXPECT_EQ(r.model.view.materials.lineStyle, LineStyle::Lines);
+    EXPECT_TRUE(r.model.view.materials.surfaces.empty()) << "a commented-out surface is not read";
+    EXPECT_FALSE(r.model.view.camera.viewpoint);
 }
 
 TEST(CpfgViewFile, AnErrorAfterAMultiLineCommentNamesItsOwnLine) {
@@ -142,7 +142,7 @@ TEST(CpfgTropism, UnderscoreAddsTheElasticityIncrementAndBranchesKeepTheirOwn) {
 TEST(CpfgMovements, SeveralTorqueLinesAdd) {
     TempDir dir;
     Model m = withView(dir, "F+F+F+F", "torque: T: 1,0,0 E: 0.25\ntorque: T: 2,0,0 E: 0.25\n");
-    ASSERT_EQ(m.view.torques.size(), 2u);
+    ASSERT_EQ(m.view.turtle.torques.size(), 2u);
     Scene s = interpret(m, derive(m, -1));
     ASSERT_EQ(s.segments.size(), 4u);
     EXPECT_NEAR(s.segments[1].b.x, -0.620545, 1e-5);
@@ -157,12 +157,12 @@ TEST(CpfgViewFile, PolygonizationLevelAndCylinderSidesGiveTheStemsSides) {
     ParseResult r =
         loadWithView(dir, "Lsystem: 1\nAxiom: F\nendlsystem\n", "polygonization level: 3\n");
     ASSERT_TRUE(r.ok()) << messages(r.diagnostics);
-    ASSERT_TRUE(r.model.view.tubeSides);
-    EXPECT_EQ(*r.model.view.tubeSides, 16);
+    ASSERT_TRUE(r.model.view.materials.tubeSides);
+    EXPECT_EQ(*r.model.view.materials.tubeSides, 16);
     ParseResult five =
         loadWithView(dir, "Lsystem: 1\nAxiom: F\nendlsystem\n", "cylinder sides: 5\n");
     ASSERT_TRUE(five.ok()) << messages(five.diagnostics);
-    EXPECT_EQ(five.model.view.tubeSides.value_or(0), 5);
+    EXPECT_EQ(five.model.view.materials.tubeSides.value_or(0), 5);
     ParseResult two =
         loadWithView(dir, "Lsystem: 1\nAxiom: F\nendlsystem\n", "cylinder sides: 2\n");
     ASSERT_FALSE(two.ok());
@@ -202,9 +202,9 @@ TEST(CpfgViewFile, TheFirstLightGivesTheSun) {
                                  "light: V: 1,0.5,1 D: 0.5 0.5 0.5 A: 0.2 0.2 0.2\n"
                                  "light: V: -1 -0.5 -1\n");
     ASSERT_TRUE(r.ok()) << messages(r.diagnostics);
-    EXPECT_EQ(r.model.view.lightDirection, (Vec3{1, 0.5, 1}));
-    EXPECT_DOUBLE_EQ(r.model.view.lightIntensity.value_or(-1), 0.5);
-    EXPECT_DOUBLE_EQ(r.model.view.skyIntensity.value_or(-1), 0.2);
+    EXPECT_EQ(r.model.view.camera.lightDirection, (Vec3{1, 0.5, 1}));
+    EXPECT_DOUBLE_EQ(r.model.view.camera.lightIntensity.value_or(-1), 0.5);
+    EXPECT_DOUBLE_EQ(r.model.view.camera.skyIntensity.value_or(-1), 0.2);
     ASSERT_EQ(r.warnings().size(), 1u) << messages(r.diagnostics);
     EXPECT_NE(messages(r.diagnostics).find("m.v:2:"), std::string::npos);
     ParseResult bad = loadWithView(dir, "Lsystem: 1\nAxiom: F\nendlsystem\n", "light: Q: 1 2 3\n");
@@ -254,7 +254,7 @@ TEST(CpfgMaterials, AModelFolderUsesItsMaterialFile) {
         mat.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
     }
     Model m = loadModel(folder).orThrow();
-    EXPECT_EQ(m.view.materialFile, "plant.mat");
+    EXPECT_EQ(m.view.materials.materialFile, "plant.mat");
     RenderRequest request;
     request.output = folder / "plant.png";
     request.picture.width = request.picture.height = 96;
@@ -281,7 +281,7 @@ TEST(CpfgViewFile, ScaleFactorIsAShareOfTheWindow) {
     TempDir dir;
     ParseResult r = loadWithView(dir, "Lsystem: 1\nAxiom: F\nendlsystem\n", "scale factor: 0.9\n");
     ASSERT_TRUE(r.ok()) << messages(r.diagnostics);
-    EXPECT_DOUBLE_EQ(r.model.view.scaleFactor, 90);
+    EXPECT_DOUBLE_EQ(r.model.view.camera.scaleFactor, 90);
 }
 
 // cpfg's label @L("format", values): the text is a string, not an expression. graftal keeps

@@ -160,11 +160,11 @@ TEST(FrontEnds, EveryTwoDimensionalExampleLooksTheSameInTheCommandTheStudioAndAn
 TEST(FrontEnds, KolamDotsAndSplinePathsReachEveryFrontEnd) {
     const fs::path file = kExamples / "fig6.2-snake-kolam.l";
     const Model model = load(file);
-    ASSERT_TRUE(model.view.kolamDots || model.view.splineMode == SplineMode::Path);
+    ASSERT_TRUE(model.view.kolam.dots || model.view.kolam.splineMode == SplineMode::Path);
     RenderRequest request;
     Derived d = derived(model, request);
     const Scene scene = drawn(model, shownString(model, d, request), request);
-    ASSERT_FALSE(scene.discs.empty() && model.view.kolamDots);
+    ASSERT_FALSE(scene.discs.empty() && model.view.kolam.dots);
 
     const fs::path scratch = scratchFolder();
     const studio::StudioPicture live =

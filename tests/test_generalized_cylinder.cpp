@@ -98,7 +98,7 @@ TEST(GeneralizedCylinder, TheOraclesPiecesAreDrawnWhereCpfgDrawsThem) {
 // every point at the radius (half the line width) from the centre line.
 TEST(GeneralizedCylinder, ContourSidesAndTheCircleShapeTheRings) {
     Model m = parseModel(kGencyl);
-    m.view.contourSides = 4;  // what the view file's line sets (see TheViewFileLoads...)
+    m.view.materials.contourSides = 4;  // what the view file's line sets (see TheViewFileLoads...)
     Scene s = interpret(m, deriveWithQueries(m));
     ASSERT_EQ(s.sweptTubes.size(), 2u);
     const SweptTube& t = s.sweptTubes[0];
@@ -144,7 +144,7 @@ TEST(GeneralizedCylinder, TheMeshSweepsTheSurfaceOutward) {
     Model m = parseModel(
         "Lsystem: 1\nangle increment: 45\nderivation length: 1\nAxiom: A\n"
         "A --> @Gs f(2) + f(2) @Gc(5)\nendlsystem\n");
-    m.view.contourSides = 6;
+    m.view.materials.contourSides = 6;
     Scene s = interpret(m, deriveWithQueries(m));
     ASSERT_EQ(s.sweptTubes.size(), 1u);
     Mesh mesh = buildMesh(s);
@@ -241,9 +241,9 @@ TEST(Contour, TheViewFileLoadsContoursForAtHash) {
                                         "A --> @#(2) @Gs f(2) @Ge(2)\nendlsystem\n"),
                               o);
     ASSERT_TRUE(r.ok()) << (r.diagnostics.empty() ? "" : r.diagnostics[0].toString());
-    ASSERT_EQ(r.model.view.contours.size(), 1u);
-    EXPECT_EQ(r.model.view.contours[0].id, 2);
-    EXPECT_EQ(r.model.view.contourSides, 12);
+    ASSERT_EQ(r.model.view.materials.contours.size(), 1u);
+    EXPECT_EQ(r.model.view.materials.contours[0].id, 2);
+    EXPECT_EQ(r.model.view.materials.contourSides, 12);
     Scene s = interpret(r.model, deriveWithQueries(r.model));
     ASSERT_EQ(s.sweptTubes.size(), 1u);
     EXPECT_EQ(s.sweptTubes[0].ringSize, 13u);

@@ -139,7 +139,7 @@ TEST(GraphicalFunction, AModelFolderGivesItsFunctionSetAndColourMap) {
     dir.write("colours.map", std::string(768, '\x40'));
     Model m = loadModel(dir.path()).orThrow();
     EXPECT_NEAR(derive(m, -1).params(0)[0], 0.5625, 1e-5);
-    EXPECT_EQ(m.view.colorMap, "colours.map");
+    EXPECT_EQ(m.view.materials.colorMap, "colours.map");
     dir.write("line.func", kLine);
     dir.write("m.v", "function: line.func\n");
     Model v = loadModel(dir.path()).orThrow();

@@ -56,7 +56,7 @@ TEST(Kolams, SnakeIsTheBookProductionWithF) {
 
 TEST(Kolams, AnkletsOfKrishnaIsTheBookProductionWithF) {
     Model m = example("fig6.4-anklets-of-krishna.l");
-    EXPECT_DOUBLE_EQ(m.view.angleDegrees, 45);
+    EXPECT_DOUBLE_EQ(m.view.turtle.angleDegrees, 45);
     std::string got = derivedString(m, 5);
     EXPECT_EQ(got, expand("-X--X", {{'X', "XfX--XfX"}}, 5));
     EXPECT_EQ(got.size(), 4779u);
@@ -81,7 +81,7 @@ TEST(Kolams, BagOfCandiesFollowsTheTableSchedule) {
 
 TEST(Kolams, MangoLeavesIsTheBookProduction) {
     Model m = example("fig6.6-mango-leaves.l");
-    EXPECT_DOUBLE_EQ(m.view.angleDegrees, 60);
+    EXPECT_DOUBLE_EQ(m.view.turtle.angleDegrees, 60);
     std::string got = derivedString(m, 7);
     EXPECT_EQ(got,
               expand("A---A", {{'A', "f-F+Z+F-fA"}, {'Z', "F-FF-F--[-Z]F-FF-F--F-FF-F--"}}, 7));
@@ -107,7 +107,7 @@ std::vector<Vec3> turtlePath(const std::string& s, double delta) {
 
 TEST(Kolams, SplinePathRunsNearEveryPositionAndThroughTheWholePath) {
     Model m = example("fig6.2-snake-kolam.l");
-    EXPECT_EQ(m.view.splineMode, SplineMode::Path);
+    EXPECT_EQ(m.view.kolam.splineMode, SplineMode::Path);
     const int n = 2;
     ModuleString s = deriveWithQueries(m, n);
     // Without the path mode the f-only string draws nothing at all.
@@ -158,7 +158,7 @@ TEST(Kolams, DotsSitInTheLoops) {
 
     // The snake's scene with its file's `kolam dots: on` carries them as discs.
     Model snake = example("fig6.2-snake-kolam.l");
-    EXPECT_TRUE(snake.view.kolamDots);
+    EXPECT_TRUE(snake.view.kolam.dots);
     Scene scene = sceneForRender(snake, deriveWithQueries(snake, 1), RenderRequest{});
     // After one step the path loops round seven cells of a 3 x 3 block (worked out on
     // squared paper: the first loop turns right round the cell (-1..0, 1..2)).

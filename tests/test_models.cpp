@@ -641,7 +641,7 @@ TEST(Models, SiggraphBranchingEverywhere) {
     Model a1 = example("siggraph-a-prime-branching-everywhere.l");
     EXPECT_EQ(str(a1, 1), "S[-S]S[+S]S");
     EXPECT_EQ(stripTurtle(a1, derive(a1, 3)), str(a, 3));
-    EXPECT_DOUBLE_EQ(a1.view.angleDegrees, 27.5);
+    EXPECT_DOUBLE_EQ(a1.view.turtle.angleDegrees, 27.5);
 }
 
 TEST(Models, SiggraphSubapicalGrowth) {

@@ -112,7 +112,7 @@ TEST(Models3d, TropismBendsAsInFig35) {
     Shape c = shapeOf(sceneOf("fig3.5c-tropism.l"));
     // The same plant without tropism, for reference.
     Model none = example3d("fig3.5a-tropism.l");
-    none.view.elasticity = 0;
+    none.view.turtle.elasticity = 0;
     Shape zero = shapeOf(sceneOf(none));
     // T points up: e_b > e_a > 0 bend the twigs up, b more than a; e_c < 0 bends them down.
     EXPECT_GT(b.meanTipHeadingY, a.meanTipHeadingY + 0.05);

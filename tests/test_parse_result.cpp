@@ -28,7 +28,7 @@ TEST(ParseResult, KeepsThePartialModelAndEveryDiagnostic) {
     EXPECT_EQ(r.errors()[0].location.endColumn, 16) << "the end of '-2'";
     EXPECT_EQ(r.warnings().size(), 1u);
     EXPECT_EQ(r.model.lsystem.productions.size(), 3u);
-    EXPECT_DOUBLE_EQ(r.model.view.angleDegrees, 30);
+    EXPECT_DOUBLE_EQ(r.model.view.turtle.angleDegrees, 30);
     EXPECT_THROW(r.orThrow(), Error);
 }
 
@@ -63,10 +63,10 @@ TEST(ParserTarget, ViewSettingsAreSetByNameWithTheirChecks) {
     builder.viewSetting({"line style", std::string("lines"), SourceLocation{"plant.v", 5, 13}});
     builder.viewSetting({"width factor", 1.5, SourceLocation{"plant.v", 6, 15, 6, 18}});
     builder.viewSetting({"projection", 3.0, SourceLocation{"plant.v", 7, 13}});
-    EXPECT_DOUBLE_EQ(builder.model().view.stepLength, 2.5);
-    ASSERT_TRUE(builder.model().view.viewpoint);
-    EXPECT_DOUBLE_EQ(builder.model().view.viewpoint->z, 10);
-    EXPECT_EQ(builder.model().view.lineStyle, LineStyle::Lines);
+    EXPECT_DOUBLE_EQ(builder.model().view.turtle.stepLength, 2.5);
+    ASSERT_TRUE(builder.model().view.camera.viewpoint);
+    EXPECT_DOUBLE_EQ(builder.model().view.camera.viewpoint->z, 10);
+    EXPECT_EQ(builder.model().view.materials.lineStyle, LineStyle::Lines);
     ASSERT_EQ(diags.items().size(), 2u);
     EXPECT_EQ(diags.items()[0].toString(),
               "plant.v:6:15: error: width factor must be between 0 and 1 (what ! multiplies by)");
@@ -109,7 +109,7 @@ TEST(ParserTarget, TheParserWritesEveryFactThroughTheTarget) {
               (std::vector<std::string>{"view angle factor at t.l:2:15", "table one at t.l:4:8",
                                         "production 0 line 5", "production 2 line 8"}));
     const Model& m = target.model();
-    EXPECT_DOUBLE_EQ(m.view.angleDegrees, 45);
+    EXPECT_DOUBLE_EQ(m.view.turtle.angleDegrees, 45);
     EXPECT_EQ(m.lsystem.tableNames, std::vector<std::string>{"one"});
     EXPECT_EQ(m.lsystem.productions[0].table, 0);
     EXPECT_EQ(m.lsystem.schedule.size(), 1u);

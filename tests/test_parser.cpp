@@ -20,9 +20,9 @@ TEST(Parser, ReadsTheCpfgForm) {
         "endlsystem\n");
     const LSystem& ls = m.lsystem;
     EXPECT_EQ(ls.derivationLength, 3);
-    EXPECT_DOUBLE_EQ(m.view.angleDegrees, 90);
+    EXPECT_DOUBLE_EQ(m.view.turtle.angleDegrees, 90);
     EXPECT_FALSE(ls.legacyPfg);
-    EXPECT_FALSE(m.view.clockwisePlus);
+    EXPECT_FALSE(m.view.turtle.clockwisePlus);
     EXPECT_EQ(ls.axiom.toString(ls.symbols), "F+F+F+F");
     ASSERT_EQ(ls.productions.size(), 1u);
     EXPECT_EQ(ls.productions[0].successor.size(), 14u);
@@ -39,8 +39,8 @@ TEST(Parser, AFileWithoutLsystemHeaderIsAPfgDataFile) {
         "* < + > * --> -\n");
     const LSystem& ls = m.lsystem;
     EXPECT_TRUE(ls.legacyPfg);
-    EXPECT_TRUE(m.view.clockwisePlus);
-    EXPECT_DOUBLE_EQ(m.view.angleDegrees, 22.5);
+    EXPECT_TRUE(m.view.turtle.clockwisePlus);
+    EXPECT_DOUBLE_EQ(m.view.turtle.angleDegrees, 22.5);
     EXPECT_TRUE(ls.ignored['+']);
     EXPECT_TRUE(ls.ignored['F']);
     EXPECT_FALSE(ls.ignored['0']);

@@ -106,7 +106,8 @@ TEST(StudioLines, ThePictureSendsTheLinesOfItsScene) {
         if (!parsed.model.lsystem.homomorphism.empty())  // the fern draws through one
             modules = applyHomomorphism(parsed.model.lsystem, modules);
         Scene scene = interpret(parsed.model, modules);
-        if (int n = parsed.model.view.splineSubdivisions; n > 0) scene = smoothSegments(scene, n);
+        if (int n = parsed.model.view.kolam.splineSubdivisions; n > 0)
+            scene = smoothSegments(scene, n);
         EXPECT_EQ(picture.segments, scene.segments.size()) << name;
         EXPECT_EQ(picture.stats["segments"], scene.segments.size()) << name;
         EXPECT_TRUE(picture.lines == studio::encodeLines(scene)) << name;

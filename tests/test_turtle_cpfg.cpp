@@ -243,10 +243,11 @@ TEST(TurtleCpfg, QueryUpIsCpfgsUpVector) {
 }
 
 TEST(TurtleCpfg, DefaultAngleIs45DegreesAndPfgFilesKeep90) {
-    EXPECT_EQ(parseModel("Lsystem: 1\naxiom: F\nendlsystem\n").view.angleDegrees, 45);
-    EXPECT_EQ(parseModel("Lsystem: 1\nangle increment: 30\naxiom: F\nendlsystem\n").view.angleDegrees,
+    EXPECT_EQ(parseModel("Lsystem: 1\naxiom: F\nendlsystem\n").view.turtle.angleDegrees, 45);
+    EXPECT_EQ(parseModel("Lsystem: 1\nangle increment: 30\naxiom: F\nendlsystem\n")
+                  .view.turtle.angleDegrees,
               30);
-    EXPECT_EQ(parseModel("axiom: F\n").view.angleDegrees, 90) << "a pfg data file";
+    EXPECT_EQ(parseModel("axiom: F\n").view.turtle.angleDegrees, 90) << "a pfg data file";
 }
 
 // '$' ends a sub-L-system in cpfg; an unmatched one is ignored with a warning.

@@ -50,24 +50,24 @@ TEST(ViewFile, EachSettingReachesTheView) {
     ASSERT_TRUE(r.ok()) << messages(r.diagnostics);
     EXPECT_TRUE(r.warnings().empty()) << messages(r.diagnostics);
     const ViewSettings& v = r.model.view;
-    EXPECT_DOUBLE_EQ(v.angleDegrees, 30);
-    EXPECT_DOUBLE_EQ(v.initialWidth, 2);
-    ASSERT_TRUE(v.widthIncrement);
-    EXPECT_DOUBLE_EQ(*v.widthIncrement, 0.5);
-    EXPECT_EQ(v.initialColor, 3);
-    EXPECT_EQ(v.colorIncrement, 2);
-    EXPECT_EQ(v.viewpoint, (Vec3{0, 0, 10}));
-    EXPECT_EQ(v.viewReferencePoint, (Vec3{0, 1, 0}));
-    EXPECT_EQ(v.upVector, (Vec3{1, 0, 0}));
-    EXPECT_TRUE(v.parallelProjection);
-    EXPECT_DOUBLE_EQ(v.twistDegrees, 45) << "cpfg's twist is in tenths of a degree";
-    ASSERT_EQ(v.tropisms.size(), 1u) << "a `tropism:` line acts before every move";
-    EXPECT_EQ(v.tropisms[0].direction, (Vec3{0, -1, 0})) << "normalised";
-    EXPECT_DOUBLE_EQ(v.tropisms[0].elasticity, 0.25);
-    EXPECT_FALSE(v.tropism) << "not the book's tropism after each segment";
-    ASSERT_EQ(v.torques.size(), 1u) << "`torque:` lines add up, like `tropism:` lines";
-    EXPECT_EQ(v.torques[0].direction, (Vec3{1, 0, 0}));
-    EXPECT_DOUBLE_EQ(v.torques[0].elasticity, 0.5);
+    EXPECT_DOUBLE_EQ(v.turtle.angleDegrees, 30);
+    EXPECT_DOUBLE_EQ(v.turtle.initialWidth, 2);
+    ASSERT_TRUE(v.turtle.widthIncrement);
+    EXPECT_DOUBLE_EQ(*v.turtle.widthIncrement, 0.5);
+    EXPECT_EQ(v.turtle.initialColor, 3);
+    EXPECT_EQ(v.turtle.colorIncrement, 2);
+    EXPECT_EQ(v.camera.viewpoint, (Vec3{0, 0, 10}));
+    EXPECT_EQ(v.camera.referencePoint, (Vec3{0, 1, 0}));
+    EXPECT_EQ(v.camera.upVector, (Vec3{1, 0, 0}));
+    EXPECT_TRUE(v.camera.parallelProjection);
+    EXPECT_DOUBLE_EQ(v.camera.twistDegrees, 45) << "cpfg's twist is in tenths of a degree";
+    ASSERT_EQ(v.turtle.tropisms.size(), 1u) << "a `tropism:` line acts before every move";
+    EXPECT_EQ(v.turtle.tropisms[0].direction, (Vec3{0, -1, 0})) << "normalised";
+    EXPECT_DOUBLE_EQ(v.turtle.tropisms[0].elasticity, 0.25);
+    EXPECT_FALSE(v.turtle.tropism) << "not the book's tropism after each segment";
+    ASSERT_EQ(v.turtle.torques.size(), 1u) << "`torque:` lines add up, like `tropism:` lines";
+    EXPECT_EQ(v.turtle.torques[0].direction, (Vec3{1, 0, 0}));
+    EXPECT_DOUBLE_EQ(v.turtle.torques[0].elasticity, 0.5);
 }
 
 TEST(ViewFile, TheViewFileWinsOverTheLFile) {
@@ -76,8 +76,8 @@ TEST(ViewFile, TheViewFileWinsOverTheLFile) {
         loadWithView(dir, "Lsystem: 1\nangle increment: 90\nline width: 3\nAxiom: F\nendlsystem\n",
                      "angle increment: 15\n");
     ASSERT_TRUE(r.ok()) << messages(r.diagnostics);
-    EXPECT_DOUBLE_EQ(r.model.view.angleDegrees, 15);
-    EXPECT_DOUBLE_EQ(r.model.view.initialWidth, 3) << "what the .v leaves alone stays";
+    EXPECT_DOUBLE_EQ(r.model.view.turtle.angleDegrees, 15);
+    EXPECT_DOUBLE_EQ(r.model.view.turtle.initialWidth, 3) << "what the .v leaves alone stays";
 }
 
 TEST(ViewFile, WidthAndColourIncrementsDrawTheSegments) {
@@ -125,7 +125,7 @@ TEST(ViewFile, AnUnknownLineIsWarnedOnceWithItsLine) {
     ASSERT_EQ(r.warnings().size(), 1u) << messages(r.diagnostics);
     EXPECT_EQ(r.warnings()[0].location.line, 2);
     EXPECT_NE(r.warnings()[0].message.find("sparkle"), std::string::npos);
-    EXPECT_DOUBLE_EQ(r.model.view.angleDegrees, 30);
+    EXPECT_DOUBLE_EQ(r.model.view.turtle.angleDegrees, 30);
 }
 
 TEST(ViewFile, TheCommandLineTakesTheViewFileSecond) {

@@ -8,17 +8,11 @@
 #include <string_view>
 #include <vector>
 
+#include "graftal/contour_shape.hpp"
 #include "graftal/diagnostics.hpp"
 #include "graftal/vec3.hpp"
 
 namespace graftal {
-
-struct Contour {
-    int id = 0;
-    std::string name;  // the file's `name:` line, or the file name
-    bool closed = true;
-    std::vector<Vec3> controlPoints;  // x, y across the cylinder (z is read, not drawn)
-};
 
 // Reads a `.con` file. Three layouts are accepted, as cpfg reads them:
 //   old:      `N DIM closed|open`, then N points of DIM (2 or 3) numbers;

@@ -102,7 +102,7 @@ class Scene {
     // The width a segment has when the turtle never changed it: what 2D line art scales by.
     float baseWidth = 1;
     // 2D line art draws widths in model units, scaled with the picture (a cpfg view file's
-    // world-unit line width, ViewSettings::widthsInModelUnits), not relative to baseWidth.
+    // world-unit line width, MaterialSettings::widthsInModelUnits), not relative to baseWidth.
     bool widthsInModelUnits = false;
     // True when anything left the z = 0 plane: 3D outputs and views make sense.
     bool is3D = false;

@@ -282,13 +282,14 @@ void loadContourSetting(ViewSettings& view, const ViewSetting& setting,
     if (!bytes) return;
     try {
         Contour contour = parseContourFile(*bytes, path.string(), static_cast<int>(id));
+        contour.file = file;
         // A later line with the same id replaces the earlier one.
-        for (Contour& c : view.contours)
+        for (Contour& c : view.materials.contours)
             if (c.id == contour.id) {
                 c = std::move(contour);
                 return;
             }
-        view.contours.push_back(std::move(contour));
+        view.materials.contours.push_back(std::move(contour));
     } catch (const Error& e) {
         for (const auto& d : e.diagnostics()) diagnostics.add(d);
     }

@@ -116,14 +116,6 @@ bool LSystem::hasSideEffects() const {
     return false;
 }
 
-std::ostream& operator<<(std::ostream& os, const ViewSettings& v) {
-    return os << "angle increment: " << formatNumber(v.angleDegrees)
-              << "\nstep length: " << formatNumber(v.stepLength)
-              << "\ninitial heading: " << formatNumber(v.initialHeading)
-              << "\nscale factor: " << formatNumber(v.scaleFactor)
-              << (v.clockwisePlus ? "\n/* + turns clockwise (pfg) */" : "") << '\n';
-}
-
 void LSystem::print(std::ostream& os, const ViewSettings* view) const {
     if (legacyPfg) os << "/* read as a pfg data file */\n";
     for (std::size_t s = kFirstDeclaredSymbol; s < symbols.size(); ++s)

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "graftal/contour.hpp"
 #include "graftal/file_reading.hpp"
 #include "graftal/parser_target.hpp"
 #include "graftal/view_file.hpp"
@@ -137,21 +138,22 @@ namespace {
 void addFolderFiles(const std::filesystem::path& folder, ParseResult& result) {
     Model& model = result.model;
     auto maps = filesEndingWith(folder, ".map");
-    if (model.view.colorMap.empty() && maps.size() == 1)
-        model.view.colorMap = maps[0].filename().string();
+    if (model.view.materials.colorMap.empty() && maps.size() == 1)
+        model.view.materials.colorMap = maps[0].filename().string();
     auto materials = filesEndingWith(folder, ".mat");
-    if (model.view.materialFile.empty() && materials.size() == 1)
-        model.view.materialFile = materials[0].filename().string();
+    if (model.view.materials.materialFile.empty() && materials.size() == 1)
+        model.view.materials.materialFile = materials[0].filename().string();
     auto contourSets = filesEndingWith(folder, ".cset");
     std::string contourText, problem;
-    if (model.view.contours.empty() && contourSets.size() == 1) {
+    if (model.view.materials.contours.empty() && contourSets.size() == 1) {
         if (!readWholeFile(contourSets[0], contourText, problem))
             result.diagnostics.push_back({Severity::Error,
                                           SourceLocation{contourSets[0].string(), 0, 0},
                                           "the contour set " + problem});
         else
             try {
-                model.view.contours = parseContourSet(contourText, contourSets[0].string());
+                model.view.materials.contours =
+                    parseContourSet(contourText, contourSets[0].string());
             } catch (const Error& e) {
                 for (const auto& d : e.diagnostics()) result.diagnostics.push_back(d);
             }

@@ -19,10 +19,10 @@ void ModelBuilder::beginSource(const std::string& file, bool legacyPfg) {
     model_.lsystem.name = file;
     model_.lsystem.file = file;
     model_.lsystem.legacyPfg = legacyPfg;
-    model_.view.clockwisePlus = legacyPfg;  // pfg's + turns right on screen
+    model_.view.turtle.clockwisePlus = legacyPfg;  // pfg's + turns right on screen
     // cpfg's angle increment is 45 degrees until a file says otherwise; pfg data files keep
     // the 90 degrees they have always had here.
-    if (!legacyPfg) model_.view.angleDegrees = 45;
+    if (!legacyPfg) model_.view.turtle.angleDegrees = 45;
 }
 
 void ModelBuilder::name(const std::string& name, const SourceLocation&) {

@@ -3,6 +3,7 @@
 #include "parser.hpp"
 
 #include "closest_word.hpp"
+#include "view_setting_table.hpp"
 
 #include "graftal/model.hpp"
 
@@ -39,57 +40,17 @@ std::string_view trimView(std::string_view s) {
     return s.substr(a, b - a + 1);
 }
 
-// The keywords a line may start with, in the spelling the messages use.
-const std::vector<std::string> kKeywords = {
-    "lsystem",
-    "derivation length",
-    "axiom",
-    "ignore",
-    "consider",
-    "age",
-    "angle factor",
-    "angle increment",
-    "scale factor",
-    "initial heading",
-    "seed",
-    "step length",
-    "maximum depth",
-    "table",
-    "table schedule",
-    "environment",
-    "viewpoint",
-    "view reference point",
-    "up vector",
-    "projection",
-    "field of view",
-    "light direction",
-    "background",
-    "line style",
-    "line width",
-    "width factor",
-    "tropism direction",
-    "tropism elasticity",
-    "initial elasticity",
-    "elasticity",
-    "color map",
-    "colour map",
-    "material file",
-    "surface",
-    "spline subdivisions",
-    "spline",
-    "kolam dots",
-    "music scale",
-    "music root",
-    "music tempo",
-    "music instrument",
-    "music axis",
-    "music unit",
-    "start",
-    "starteach",
-    "endeach",
-    "end",
-    "define",
-};
+// The keywords a line may start with, in the spelling the messages use: the grammar's,
+// then the view settings a .l file states (from their table), then the global blocks.
+const std::vector<std::string> kKeywords = [] {
+    std::vector<std::string> k = {
+        "lsystem", "derivation length", "axiom", "ignore",         "consider",    "age",
+        "seed",    "maximum depth",     "table", "table schedule", "environment",
+    };
+    for (const auto& name : lFileSettingNames()) k.push_back(name);
+    for (const char* block : {"start", "starteach", "endeach", "end", "define"}) k.push_back(block);
+    return k;
+}();
 
 // `-->` wins; then the book's `→`; then `->` (not the `<-` `>` of a context like `<->`).
 Arrow findArrow(std::string_view s) {

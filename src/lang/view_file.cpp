@@ -1,7 +1,8 @@
-// Reading cpfg's view file. Each line is "name: value"; cpfg matches the name's start, so
+// Reading cpfg's view file. Each line is "name: value"; the names and how each writes its
+// value are the view-file spellings of the settings' table (view_settings.cpp), so
 // "initial color:" and "initial colour:" both work, and a number may be followed by a unit
 // word ("initial line width: 3 pixels"). The values are handed to the target under the
-// names the .l file uses (viewSettingNames()).
+// settings' names.
 #include "graftal/view_file.hpp"
 
 #include <algorithm>
@@ -11,83 +12,11 @@
 #include <optional>
 #include <vector>
 
+#include "view_setting_table.hpp"
+
 namespace graftal {
 
 namespace {
-
-enum class Kind {
-    Number,
-    Vector,
-    Text,
-    Twist,
-    PolygonizationLevel,
-    Tropism,
-    Torque,
-    Light,
-    Ignored,
-    NotCpfg,  // a line cpfg's reader does not know either: warned with what to do instead
-};
-
-struct ViewLine {
-    const char* cpfgName;  // lower case, without the ':'
-    const char* setting;   // the ViewSetting name (for Ignored: why it is not drawn)
-    Kind kind;
-};
-
-// The lines of a cpfg view file graftal reads, longest names first where one starts
-// another ("line width increment" before "line width").
-const std::vector<ViewLine>& viewLines() {
-    static const std::vector<ViewLine> lines = {
-        {"angle increment", "angle increment", Kind::Number},
-        {"angle factor", "angle factor", Kind::Number},
-        {"initial line width", "line width", Kind::Number},
-        {"line width increment", "line width increment", Kind::Number},
-        {"initial color", "initial color", Kind::Number},
-        {"initial colour", "initial color", Kind::Number},
-        {"color increment", "color increment", Kind::Number},
-        {"colour increment", "color increment", Kind::Number},
-        {"viewpoint", "viewpoint", Kind::Vector},
-        {"view reference point", "view reference point", Kind::Vector},
-        {"up vector", "up vector", Kind::Vector},
-        {"projection", "projection", Kind::Text},
-        {"twist", "twist", Kind::Twist},
-        {"scale factor", "scale factor", Kind::Number},
-        {"tropism direction", "cpfg tropism direction", Kind::Vector},
-        {"initial elasticity", "initial elasticity", Kind::Number},
-        {"elasticity increment", "elasticity increment", Kind::Number},
-        {"tropism", "tropism", Kind::Tropism},
-        {"torque", "torque", Kind::Torque},
-        {"surface", "surface", Kind::Text},
-        {"box", "the box is recomputed from the geometry", Kind::Ignored},
-        {"render mode", "graftal chooses how to draw by the output format", Kind::Ignored},
-        {"light", "light", Kind::Light},
-        {"material",
-         "cpfg's view files have no such line (cpfg reads materials from a .mat file given on "
-         "its command line); graftal reads a model folder's one .mat, or the .l file's "
-         "'material file:'",
-         Kind::NotCpfg},
-        {"shade mode", "graftal chooses the shading by the output format", Kind::Ignored},
-        {"z buffer", "graftal chooses how to draw by the output format", Kind::Ignored},
-        {"cylinder sides", "cylinder sides", Kind::Number},
-        {"polygonization level", "cylinder sides", Kind::PolygonizationLevel},
-        {"light direction", "light direction", Kind::Vector},
-        {"contact point", "contact points are not read yet", Kind::Ignored},
-        {"end point", "end points are not read yet", Kind::Ignored},
-        {"heading", "headings are not read yet", Kind::Ignored},
-        {"up", "up vectors of surfaces are not read yet", Kind::Ignored},
-        {"size", "sizes of surfaces are not read yet", Kind::Ignored},
-        {"front distance", "clipping planes are not read", Kind::Ignored},
-        {"back distance", "clipping planes are not read", Kind::Ignored},
-        {"line style", "line style", Kind::Text},
-        {"function", "function", Kind::Text},
-        {"function set", "function set", Kind::Text},
-        {"curve", "curve", Kind::Text},
-        {"contour sides", "contour sides", Kind::Number},
-        {"contour", "contour", Kind::Text},
-        {"twist of cylinders", "generalized cylinders are drawn without twist", Kind::Ignored},
-    };
-    return lines;
-}
 
 std::string lower(std::string_view s) {
     std::string out(s);
@@ -116,65 +45,71 @@ class ViewFileReader {
                                ? std::string()
                                : lower(text.substr(first, colon - first));
         while (!name.empty() && isBlank(name.back())) name.pop_back();
-        const ViewLine* known = nullptr;
-        for (const auto& l : viewLines())
-            if (name == l.cpfgName) known = &l;
+        const CpfgSpelling* spelling = nullptr;
+        const ViewSettingDescriptor* known = findViewFileSetting(name, spelling);
         if (!known) {
             diags_.warning(at(first, text.size()),
                            "unknown view-file line '" + std::string(trim(text)) + "', ignored");
             return;
         }
+        const std::string setting(known->name);
+        const std::string cpfgName(spelling->name.empty() ? known->name : spelling->name);
         std::size_t value = colon + 1;
         while (value < text.size() && isBlank(text[value])) ++value;
-        switch (known->kind) {
-            case Kind::NotCpfg:
-                diags_.warning(at(first, colon), "'" + name + ":' is ignored: " + known->setting);
-                return;
-            case Kind::Ignored:
+        switch (spelling->syntax) {
+            case CpfgSyntax::NotCpfg:
                 diags_.warning(at(first, colon),
-                               "'" + name + ":' is read but not drawn: " + known->setting);
+                               "'" + name + ":' is ignored: " + std::string(known->note));
                 return;
-            case Kind::Number: {
-                auto d = number(value, known->cpfgName);
-                // cpfg's scale factor is the share of the window the picture fills (0.9);
-                // graftal's, as pfg's, is in percent.
-                if (d && name == "scale factor") *d *= 100;
-                if (d) send(known->setting, *d, value);
-                if (d && name == "initial line width") lineWidthUnit(value);
+            case CpfgSyntax::Ignored:
+                diags_.warning(at(first, colon), "'" + name + ":' is read but not drawn: " +
+                                                     std::string(known->note));
                 return;
-            }
-            case Kind::PolygonizationLevel: {
-                // cpfg: the stems' sides are 2^(level + 1), at least 3.
-                auto d = number(value, known->cpfgName);
-                if (d)
-                    send(known->setting, std::max(3.0, std::round(std::pow(2.0, *d + 1))), value);
-                return;
-            }
-            case Kind::Twist: {
-                // cpfg gives the twist in tenths of a degree.
-                auto d = number(value, known->cpfgName);
-                if (d) send(known->setting, *d / 10, value);
-                return;
-            }
-            case Kind::Vector: {
-                auto v = vector(value, known->cpfgName);
-                if (v) send(known->setting, *v, value);
-                return;
-            }
-            case Kind::Text:
-                send(known->setting, std::string(trim(text.substr(value))), value);
-                if (name == "line style") {
-                    // cpfg: pixel lines, or polygons and cylinders as wide as the world width.
-                    std::string style = lower(trim(text.substr(value)));
-                    send("cpfg line width unit",
-                         std::string(style.starts_with("pixel") ? "pixels" : "model"), value);
+            case CpfgSyntax::Same:
+                if (known->value == SettingValue::Number) {
+                    if (auto d = number(value, cpfgName)) send(setting, *d, value);
+                } else if (known->value == SettingValue::Vector) {
+                    if (auto v = vector(value, cpfgName)) send(setting, *v, value);
+                } else {
+                    send(setting, std::string(trim(text.substr(value))), value);
                 }
                 return;
-            case Kind::Tropism:
-            case Kind::Torque:
-                fields(value, known->setting);
+            case CpfgSyntax::Percent: {
+                // cpfg's scale factor is the share of the window the picture fills (0.9);
+                // graftal's, as pfg's, is in percent.
+                if (auto d = number(value, cpfgName)) send(setting, *d * 100, value);
                 return;
-            case Kind::Light:
+            }
+            case CpfgSyntax::WidthWithUnit: {
+                auto d = number(value, cpfgName);
+                if (d) send(setting, *d, value);
+                if (d) lineWidthUnit(value);
+                return;
+            }
+            case CpfgSyntax::PolygonizationLevel: {
+                // cpfg: the stems' sides are 2^(level + 1), at least 3.
+                auto d = number(value, cpfgName);
+                if (d) send(setting, std::max(3.0, std::round(std::pow(2.0, *d + 1))), value);
+                return;
+            }
+            case CpfgSyntax::TenthsOfDegree: {
+                // cpfg gives the twist in tenths of a degree.
+                auto d = number(value, cpfgName);
+                if (d) send(setting, *d / 10, value);
+                return;
+            }
+            case CpfgSyntax::StyleWithUnit: {
+                send(setting, std::string(trim(text.substr(value))), value);
+                // cpfg: pixel lines, or polygons and cylinders as wide as the world width.
+                std::string style = lower(trim(text.substr(value)));
+                send("cpfg line width unit",
+                     std::string(style.starts_with("pixel") ? "pixels" : "model"), value);
+                return;
+            }
+            case CpfgSyntax::Fields:
+                fields(value, setting);
+                return;
+            case CpfgSyntax::Light:
                 light(value);
                 return;
         }

@@ -1,11 +1,11 @@
 // The view settings of a .l file: turn angle, step, and how 3D scenes are drawn (camera,
 // light, stems, tropism, surfaces, colour map). cpfg keeps the latter in a separate view
 // file; graftal reads them from the L-system file with the same names.
-#include <algorithm>
 #include <cctype>
 #include <cmath>
 
 #include "parser.hpp"
+#include "view_setting_table.hpp"
 
 namespace graftal::parsing {
 
@@ -50,12 +50,12 @@ bool Parser::vectorValue(const SourceLine& line, std::size_t from, Vec3& out) {
     return true;
 }
 
-// Reads the value of a view setting by its kind (vector, word, number) and hands it to the
-// target by name, which checks it (view_settings.cpp).
+// Reads the value of a view setting by its kind in the table (a vector, a word or text, a
+// number) and hands it to the target by name, which checks it (view_settings.cpp).
 bool Parser::parseViewSetting(const SourceLine& line, const std::string& kw,
                               std::size_t valueStart) {
-    const auto& names = viewSettingNames();
-    if (std::find(names.begin(), names.end(), kw) == names.end()) return false;
+    const ViewSettingDescriptor* descriptor = findLFileSetting(kw);
+    if (!descriptor) return false;
     std::string_view rest = std::string_view(line.text).substr(valueStart);
     std::string_view value = trimView(rest);
     std::size_t lead = firstNonBlank(rest);
@@ -64,20 +64,25 @@ bool Parser::parseViewSetting(const SourceLine& line, const std::string& kw,
     setting.location = at(line, valueStart + (lead == std::string_view::npos ? 0 : lead));
     setting.location.endLine = line.number;
     setting.location.endColumn = setting.location.column + static_cast<int>(value.size());
-    if (kw == "viewpoint" || kw == "view reference point" || kw == "up vector" ||
-        kw == "light direction" || kw == "tropism direction") {
-        Vec3 v;
-        if (!vectorValue(line, valueStart, v)) return true;
-        setting.value = v;
-    } else if (kw == "projection" || kw == "line style" || kw == "background" ||
-               kw == "color map" || kw == "colour map" || kw == "surface" || kw == "spline" ||
-               kw == "material file" || kw == "kolam dots" || kw == "music scale" ||
-               kw == "music root" || kw == "music axis") {
-        setting.value = std::string(value);
-    } else {
-        double d = 0;
-        if (!constantValue(line, valueStart, d)) return true;
-        setting.value = d;
+    switch (descriptor->value) {
+        case SettingValue::Vector: {
+            Vec3 v;
+            if (!vectorValue(line, valueStart, v)) return true;
+            setting.value = v;
+            break;
+        }
+        case SettingValue::Number: {
+            double d = 0;
+            if (!constantValue(line, valueStart, d)) return true;
+            setting.value = d;
+            break;
+        }
+        case SettingValue::Word:
+        case SettingValue::FileOrWord:
+        case SettingValue::File:
+        case SettingValue::None:
+            setting.value = std::string(value);
+            break;
     }
     target_.viewSetting(setting);
     return true;

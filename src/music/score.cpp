@@ -155,7 +155,7 @@ Score scoreFromModel(const Model& model, int steps, const MusicOptions& options,
         throw Error(SourceLocation{model.lsystem.file, 0, 0},
                     "the curve leaves the plane; fractal music reads 2D curves");
     try {
-        Score score = scoreFromScene(scene, model.view.stepLength, options);
+        Score score = scoreFromScene(scene, model.view.turtle.stepLength, options);
         score.title = std::filesystem::path(model.lsystem.file).stem().string();
         return score;
     } catch (const Error& e) {

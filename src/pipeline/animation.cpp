@@ -141,8 +141,8 @@ DerivationDiagram animatedDiagram(const Model& model, const AnimationRequest& re
     RenderOptions o = request.picture;
     if (request.background)
         o.background = *request.background;
-    else if (model.view.background)
-        o.background = *model.view.background;
+    else if (model.view.camera.background)
+        o.background = *model.view.camera.background;
     DerivationDiagram d = layoutDerivationDiagram(strings, model.lsystem.symbols, o);
     for (DiagramRow& row : d.rows) row.step += request.from;
     return d;

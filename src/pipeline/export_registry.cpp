@@ -91,7 +91,7 @@ Score scored(const Model& model, const ExportRequest& request) {
         throw Error(SourceLocation{model.lsystem.file, 0, 0},
                     "the curve leaves the plane; fractal music reads 2D curves");
     try {
-        Score score = scoreFromScene(scene, model.view.stepLength,
+        Score score = scoreFromScene(scene, model.view.turtle.stepLength,
                                      request.music.value_or(musicOptions(model.view)));
         score.title = fs::path(model.lsystem.file).stem().string();
         return score;

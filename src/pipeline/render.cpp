@@ -43,7 +43,7 @@ std::filesystem::path sourceFolder(const Model& model, const RenderRequest& requ
 // name without a file on disk falls back to the built-in surfaces (leaf, petal).
 SurfaceLibrary surfacesFor(const ViewSettings& view, const std::filesystem::path& dir) {
     SurfaceLibrary lib = SurfaceLibrary::builtin();
-    for (const auto& decl : view.surfaces) {
+    for (const auto& decl : view.materials.surfaces) {
         std::filesystem::path path = dir / decl.file;
         Surface s;
         if (std::filesystem::exists(path)) {
@@ -71,30 +71,30 @@ RaytraceOptions raytraceOptions(const ViewSettings& v, const RenderRequest& requ
     r.samplesPerPixel = request.samplesPerPixel;
     r.threads = request.threads;
     r.background = request.background ? *request.background
-                                      : v.background.value_or(request.picture.background);
-    r.camera.viewpoint = request.viewpoint ? request.viewpoint : v.viewpoint;
-    r.camera.target = request.target ? request.target : v.viewReferencePoint;
-    if (auto up = request.up ? request.up : v.upVector) r.camera.up = *up;
-    if (v.twistDegrees != 0 && !request.up) {
+                                      : v.camera.background.value_or(request.picture.background);
+    r.camera.viewpoint = request.viewpoint ? request.viewpoint : v.camera.viewpoint;
+    r.camera.target = request.target ? request.target : v.camera.referencePoint;
+    if (auto up = request.up ? request.up : v.camera.upVector) r.camera.up = *up;
+    if (v.camera.twistDegrees != 0 && !request.up) {
         // cpfg's twist turns the camera about its viewing direction: 45 degrees turns the up
         // vector (0,1,0) of a camera looking along -z to (-0.71,0.71,0), as cpfg writes it.
         Vec3 d{0, 0, -1};
         if (r.camera.viewpoint && r.camera.target)
             d = normalizedOr(*r.camera.target - *r.camera.viewpoint, d);
-        const double a = radians(v.twistDegrees);
+        const double a = radians(v.camera.twistDegrees);
         const Vec3 u = r.camera.up;
         r.camera.up =
             u * std::cos(a) - cross(d, u) * std::sin(a) + d * (dot(d, u) * (1 - std::cos(a)));
     }
-    if (auto fov = request.fieldOfView ? request.fieldOfView : v.fieldOfView)
+    if (auto fov = request.fieldOfView ? request.fieldOfView : v.camera.fieldOfView)
         r.camera.fieldOfView = *fov;
-    r.camera.orthographic = v.parallelProjection;
-    r.camera.fitWindow = v.parallelProjection && !request.viewpoint && !request.target;
-    if (auto light = request.light ? request.light : v.lightDirection)
+    r.camera.orthographic = v.camera.parallelProjection;
+    r.camera.fitWindow = v.camera.parallelProjection && !request.viewpoint && !request.target;
+    if (auto light = request.light ? request.light : v.camera.lightDirection)
         r.lighting.sunDirection = *light;
     r.ground = request.ground;
-    if (v.lightIntensity) r.lighting.sunIntensity = 0.9 * *v.lightIntensity;
-    if (v.skyIntensity) r.lighting.skyIntensity = *v.skyIntensity;
+    if (v.camera.lightIntensity) r.lighting.sunIntensity = 0.9 * *v.camera.lightIntensity;
+    if (v.camera.skyIntensity) r.lighting.skyIntensity = *v.camera.skyIntensity;
     return r;
 }
 
@@ -118,12 +118,12 @@ void setPictureRadii(MeshOptions& mo, const Bounds& bounds, const RaytraceOption
 // (100 = all of it), and the file's background applies unless the request overrides it.
 RenderOptions lineArtOptions(const Model& model, const RenderRequest& request) {
     RenderOptions render = request.picture;
-    double fill = std::clamp(model.view.scaleFactor / 100.0, 0.01, 1.0);
+    double fill = std::clamp(model.view.camera.scaleFactor / 100.0, 0.01, 1.0);
     render.margin = 0.5 - (0.5 - render.margin) * fill;
     if (request.background)
         render.background = *request.background;
-    else if (model.view.background)
-        render.background = *model.view.background;
+    else if (model.view.camera.background)
+        render.background = *model.view.camera.background;
     return render;
 }
 
@@ -142,8 +142,8 @@ void renderDerivation(const Model& model, int steps, const RenderRequest& reques
     RenderOptions render = request.picture;
     if (request.background)
         render.background = *request.background;
-    else if (model.view.background)
-        render.background = *model.view.background;
+    else if (model.view.camera.background)
+        render.background = *model.view.camera.background;
     request.cancel.check();
     const std::string extension = destination.path().extension().string();
     destination.writeThroughFile("picture", extension.empty() ? ".svg" : extension,
@@ -284,13 +284,13 @@ RenderResult renderTo(const Model& model, const RenderRequest& request, FileForm
         // A picture with many strokes per pixel is drawn from its subtree summaries even when
         // its string would fit: its time then grows with the image, not with the string.
         // (The streamed picture has neither colour maps nor splines.)
-        const bool plainLines = model.view.colorMap.empty() && !drawsSplines(model, request) &&
-                                !request.kolamDots && !model.view.kolamDots;
+        const bool plainLines = model.view.materials.colorMap.empty() && !drawsSplines(model, request) &&
+                                !request.kolamDots && !model.view.kolam.dots;
         if ((pixelBound && plainLines) ||
             shouldStream(model, steps, request, png2D, true, pixelBound, result.notes)) {
             warnLineArtIgnores(result, request, model, false);
             RenderOptions render = request.picture;
-            double fill = std::clamp(model.view.scaleFactor / 100.0, 0.01, 1.0);
+            double fill = std::clamp(model.view.camera.scaleFactor / 100.0, 0.01, 1.0);
             render.margin = 0.5 - (0.5 - render.margin) * fill;
             destination.writeThroughFile("PNG", ".png", [&](const std::filesystem::path& file) {
                 renderStreamedPng(model, steps, derivationOptions(model, request), render, file);

@@ -46,21 +46,21 @@ struct Smoothing {
 
 Smoothing smoothingFor(const Model& model, const RenderRequest& request) {
     Smoothing s;
-    s.path = request.splinePath.value_or(model.view.splineMode == SplineMode::Path);
-    s.subdivisions = request.spline.value_or(model.view.splineSubdivisions);
+    s.path = request.splinePath.value_or(model.view.kolam.splineMode == SplineMode::Path);
+    s.subdivisions = request.spline.value_or(model.view.kolam.splineSubdivisions);
     if (request.splinePath.value_or(false) && !request.spline && s.subdivisions == 0)
         s.subdivisions = 8;
     return s;
 }
 
 bool drawsKolamDots(const Model& model, const RenderRequest& request) {
-    return request.kolamDots || model.view.kolamDots;
+    return request.kolamDots || model.view.kolam.dots;
 }
 
 // The colour map's palette, when the file names one.
 void applyColorMap(const Model& model, const RenderRequest& request, Scene& scene) {
-    if (!model.view.colorMap.empty())
-        scene.palette = loadColorMap(sourceFolder(model, request) / model.view.colorMap);
+    if (!model.view.materials.colorMap.empty())
+        scene.palette = loadColorMap(sourceFolder(model, request) / model.view.materials.colorMap);
 }
 
 // Where surface `name` is first placed (`~` then `name`): the first production whose
@@ -94,7 +94,7 @@ Scene drawn(const Model& model, ModuleString shown, const RenderRequest& request
     Scene scene = interpret(model, shown);
     shown = ModuleString{};
     if (drawsKolamDots(model, request))
-        addKolamDots(scene, model.view.stepLength, 0.08 * model.view.stepLength);
+        addKolamDots(scene, model.view.turtle.stepLength, 0.08 * model.view.turtle.stepLength);
     if (smoothing.subdivisions > 0) scene = smoothSegments(scene, smoothing.subdivisions);
     applyColorMap(model, request, scene);
     return scene;
@@ -122,16 +122,16 @@ MeshSetup meshSetup(const Model& model, const RenderRequest& request, MeshPurpos
     const fs::path folder = sourceFolder(model, request);
     setup.surfaces = surfacesFor(model.view, folder);
     // Uncoloured 3D plants are bark brown, not line art's ink, so their shading shows.
-    if (model.view.colorMap.empty()) setup.palette = defaultPalette3D();
-    if (!model.view.materialFile.empty())
-        setup.palette = materialPalette(loadMaterials(folder / model.view.materialFile));
+    if (model.view.materials.colorMap.empty()) setup.palette = defaultPalette3D();
+    if (!model.view.materials.materialFile.empty())
+        setup.palette = materialPalette(loadMaterials(folder / model.view.materials.materialFile));
     MeshOptions& mo = setup.options;
     // The view file's `cylinder sides:` unless the request names its own.
     mo.tubeSides = request.tubeSides != RenderRequest{}.tubeSides
                        ? request.tubeSides
-                       : model.view.tubeSides.value_or(request.tubeSides);
+                       : model.view.materials.tubeSides.value_or(request.tubeSides);
     mo.surfaceDivisions = request.surfaceDivisions;
-    mo.cylinders = model.view.lineStyle == LineStyle::Cylinders;
+    mo.cylinders = model.view.materials.lineStyle == LineStyle::Cylinders;
     if (purpose == MeshPurpose::Viewer) {
         // Repeated organs (leaves, flowers) once each, placed by instancing; few sides, as
         // a live view redraws the mesh at every turn.

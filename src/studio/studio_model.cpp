@@ -318,7 +318,7 @@ StudioPicture derivePicture(const ModelInput& input, Model parsed, const StudioL
         // Over the budget the browser gets a picture, not the segments.
         const Scene scene = drawn(model, shown, request);
         RenderOptions render;
-        if (model.view.background) render.background = *model.view.background;
+        if (model.view.camera.background) render.background = *model.view.camera.background;
         writeImage(scene.is3D ? projectScene(scene, ViewDirection::Front) : scene, render,
                    ImageFormat::Png, Destination::memory(picture.summaryPng, "picture.png"));
         picture.notes.push_back(std::to_string(scene.segments.size()) +

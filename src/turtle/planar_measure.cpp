@@ -90,17 +90,17 @@ class PlanarWalk {
   public:
     explicit PlanarWalk(const Model& model) : ops_(opTable(model.lsystem)) {
         const ViewSettings& v = model.view;
-        step_ = v.stepLength;
-        double delta = radians(v.angleDegrees);
+        step_ = v.turtle.stepLength;
+        double delta = radians(v.turtle.angleDegrees);
         cos_ = std::cos(delta);
-        turnSign_ = v.clockwisePlus ? -1.0 : 1.0;
+        turnSign_ = v.turtle.clockwisePlus ? -1.0 : 1.0;
         sinLeft_ = turnSign_ * std::sin(delta);
         sinRight_ = -turnSign_ * std::sin(delta);
         view_ = &v;
         Frame& t = state_.turtle;
-        double h = radians(v.initialHeading);
+        double h = radians(v.turtle.initialHeading);
         rotateFrame(t, std::cos(h), std::sin(h));
-        t.width = static_cast<float>(v.initialWidth);
+        t.width = static_cast<float>(v.turtle.initialWidth);
         baseWidth_ = t.width;
         t.weight = weightOf(t.width);
         stack_.resize(64);

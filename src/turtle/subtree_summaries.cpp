@@ -121,8 +121,8 @@ SubtreeMotion SubtreeSummaries::leaf(Symbol symbol) const {
     SubtreeMotion m;
     m.summarised = true;
     const ViewSettings& v = view_;
-    double delta = radians(v.angleDegrees);
-    double turn = v.clockwisePlus ? -1.0 : 1.0;
+    double delta = radians(v.turtle.angleDegrees);
+    double turn = v.turtle.clockwisePlus ? -1.0 : 1.0;
     const TurtleOp op = turtle::opOf(ls_, symbol);
     switch (op) {
         case TurtleOp::None:
@@ -130,12 +130,12 @@ SubtreeMotion SubtreeSummaries::leaf(Symbol symbol) const {
         case TurtleOp::Forward:
         case TurtleOp::ForwardNoVertex:
             m.segments = 1;
-            m.length = std::fabs(v.stepLength);
+            m.length = std::fabs(v.turtle.stepLength);
             [[fallthrough]];
         case TurtleOp::Move:
         case TurtleOp::MoveNoVertex:
-            m.along = v.stepLength;
-            m.radius = std::fabs(v.stepLength);
+            m.along = v.turtle.stepLength;
+            m.radius = std::fabs(v.turtle.stepLength);
             break;
         case TurtleOp::TurnLeft:
         case TurtleOp::TurnRight:

@@ -27,7 +27,7 @@ Scene interpret(const Model& model, const ModuleString& modules) {
 
 Scene interpret(const LSystem& lsystem, const ViewSettings& view, const ModuleString& modules) {
     Scene scene;
-    scene.widthsInModelUnits = view.widthsInModelUnits;
+    scene.widthsInModelUnits = view.materials.widthsInModelUnits;
     scene.segments.reserve(segmentsAtMost(lsystem, modules));
     adviseHugePages(scene.segments);
     turtle::SceneSink sink(scene);

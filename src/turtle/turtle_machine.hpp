@@ -175,31 +175,31 @@ class TurtleMachine {
           view_(view),
           sink_(sink),
           ops_(opTable(ls)),
-          cylinders_(view.contours, view.contourSides) {
+          cylinders_(view.materials.contours, view.materials.contourSides) {
         const ViewSettings& v = view_;
-        double delta = radians(v.angleDegrees);
+        double delta = radians(v.turtle.angleDegrees);
         deltaCos_ = std::cos(delta);
         deltaSin_ = std::sin(delta);
-        turnSign_ = v.clockwisePlus ? -1.0 : 1.0;
+        turnSign_ = v.turtle.clockwisePlus ? -1.0 : 1.0;
         // cpfg's / rolls L toward -U (its up vector is our -U); pfg data files keep the
         // book's / (L toward U).
-        rollSign_ = v.clockwisePlus ? 1.0 : -1.0;
-        double h = radians(v.initialHeading);
+        rollSign_ = v.turtle.clockwisePlus ? 1.0 : -1.0;
+        double h = radians(v.turtle.initialHeading);
         rotatePair(state_.heading, state_.left, std::cos(h), std::sin(h));
-        state_.width = static_cast<float>(v.initialWidth);
-        state_.color = colorIndex(v.initialColor);
+        state_.width = static_cast<float>(v.turtle.initialWidth);
+        state_.color = colorIndex(v.turtle.initialColor);
         // Elasticity is the turtle's: `_` changes it as the string is read (cpfg).
-        if (v.tropism) {
-            tropism_ = *v.tropism;
-            state_.elasticity = v.elasticity;
+        if (v.turtle.tropism) {
+            tropism_ = *v.turtle.tropism;
+            state_.elasticity = v.turtle.elasticity;
             hasTropism_ = true;
         }
         // cpfg's movements before every move: the tropisms' sum and the torque.
-        for (const auto& m : v.tropisms)
+        for (const auto& m : v.turtle.tropisms)
             movementTropism_ = movementTropism_ + m.direction * m.elasticity;
         hasMovementTropism_ = length(movementTropism_) > 0;
-        if (v.torque) torque_ = *v.torque * v.torqueElasticity;
-        for (const auto& m : v.torques) torque_ = torque_ + m.direction * m.elasticity;
+        if (v.turtle.torque) torque_ = *v.turtle.torque * v.turtle.torqueElasticity;
+        for (const auto& m : v.turtle.torques) torque_ = torque_ + m.direction * m.elasticity;
         hasTorque_ = length(torque_) > 0;
         sink_.baseWidth(state_.width);
     }
@@ -305,7 +305,7 @@ class TurtleMachine {
     // LSFP ch. 3.1 and SIGGRAPH '88 §3: after each segment the heading bends toward T by
     // alpha = e |H x T| (away from T when e < 0), a torque-like heuristic.
     void applyTropism() {
-        if (view_.cpfgTropism) {
+        if (view_.turtle.cpfgTropism) {
             applyCpfgTropism();
             return;
         }
@@ -390,7 +390,7 @@ class TurtleMachine {
     }
 
     double lengthArg(std::span<const double> args) const {
-        return args.empty() ? view_.stepLength : args[0];
+        return args.empty() ? view_.turtle.stepLength : args[0];
     }
 
     void apply(TurtleOp op, std::span<const double> args, std::size_t index) {
@@ -500,18 +500,18 @@ class TurtleMachine {
                                             : static_cast<float>(args[0]);
                 break;
             case TurtleOp::ColorNext:
-                state_.color = args.empty() ? colorIndex(state_.color + view_.colorIncrement)
+                state_.color = args.empty() ? colorIndex(state_.color + view_.turtle.colorIncrement)
                                             : colorIndex(args[0]);
                 break;
             case TurtleOp::Elasticity:
                 state_.elasticity =
-                    args.empty() ? state_.elasticity + view_.elasticityIncrement : args[0];
+                    args.empty() ? state_.elasticity + view_.turtle.elasticityIncrement : args[0];
                 break;
             case TurtleOp::ColorPrevious:
                 if (!args.empty())
                     state_.color = colorIndex(args[0]);
                 else
-                    state_.color = colorIndex(state_.color - view_.colorIncrement);
+                    state_.color = colorIndex(state_.color - view_.turtle.colorIncrement);
                 break;
             case TurtleOp::SurfacePrefix:
                 note(state_.position);
