@@ -18,9 +18,9 @@
 #include <cstdlib>
 #include <iostream>
 
+#include "graftal/geometry/mesh_scene.hpp"
+#include "graftal/geometry/surface.hpp"
 #include "graftal/graftal.hpp"
-#include "graftal/mesh_scene.hpp"
-#include "graftal/surface.hpp"
 
 namespace {
 

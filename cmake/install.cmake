@@ -12,8 +12,9 @@ install(TARGETS ${GRAFTAL_LAYERS} graftal_lib
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(TARGETS graftal RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# One folder per layer; the studio's headers serve the program only.
 install(DIRECTORY include/graftal DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
-        FILES_MATCHING PATTERN "*.hpp")
+        FILES_MATCHING PATTERN "*.hpp" PATTERN "studio" EXCLUDE)
 install(DIRECTORY surfaces/ DESTINATION ${CMAKE_INSTALL_DATADIR}/graftal/surfaces
         FILES_MATCHING PATTERN "*.s")
 

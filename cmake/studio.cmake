@@ -16,7 +16,8 @@ add_library(graftal_studio STATIC
   src/studio/zip_archive.cpp
   src/studio/line_buffer.cpp)
 set_target_properties(graftal_studio PROPERTIES POSITION_INDEPENDENT_CODE ON)
-target_include_directories(graftal_studio PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/src)
+graftal_include_view(graftal_studio studio pipeline music maps output turtle rewrite lang geometry
+  core)
 target_compile_options(graftal_studio PRIVATE ${GRAFTAL_WARNINGS})
 target_link_libraries(graftal_studio PUBLIC graftal_pipeline graftal_music nlohmann_json::nlohmann_json
   PRIVATE PkgConfig::HTTPLIB)

@@ -24,7 +24,9 @@
 
 #include <unistd.h>
 
+#include "graftal/geometry/contour_points.hpp"
 #include "graftal/graftal.hpp"
+#include "graftal/lang/contour_file.hpp"
 
 namespace graftal_fuzz {
 

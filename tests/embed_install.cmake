@@ -25,7 +25,7 @@ function(check_png png)
 endfunction()
 
 run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${stage})
-foreach(installed include/graftal/pipeline.hpp share/graftal/surfaces/leaf.s bin/graftal)
+foreach(installed include/graftal/pipeline/pipeline.hpp share/graftal/surfaces/leaf.s bin/graftal)
   if(NOT EXISTS ${stage}/${installed})
     message(FATAL_ERROR "the install has no ${installed}")
   endif()

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "graftal/lsystem.hpp"
+#include "graftal/lang/lsystem.hpp"
 #include "rewrite/rewriting_engine.hpp"
 
 namespace graftal::testing {

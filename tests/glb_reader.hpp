@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "graftal/mesh.hpp"
+#include "graftal/geometry/mesh.hpp"
 #include "process.hpp"
 
 namespace graftal::testing {

@@ -26,10 +26,10 @@
 #include <vector>
 
 #include "gltf_validator.hpp"
+#include "graftal/core/vec3.hpp"
+#include "graftal/geometry/mesh.hpp"
+#include "graftal/geometry/surface.hpp"
 #include "graftal/graftal.hpp"
-#include "graftal/mesh.hpp"
-#include "graftal/surface.hpp"
-#include "graftal/vec3.hpp"
 #include "process.hpp"
 
 namespace {

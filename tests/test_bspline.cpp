@@ -4,7 +4,7 @@
 #include <cmath>
 #include <vector>
 
-#include "graftal/bspline.hpp"
+#include "graftal/geometry/bspline.hpp"
 #include "test_helpers.hpp"
 
 using namespace graftal;

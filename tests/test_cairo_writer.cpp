@@ -8,10 +8,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <ctime>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -20,8 +20,8 @@
 #include <string>
 #include <vector>
 
-#include "graftal/diagnostics.hpp"
-#include "graftal/output.hpp"
+#include "graftal/core/diagnostics.hpp"
+#include "graftal/output/output.hpp"
 
 namespace graftal {
 namespace {

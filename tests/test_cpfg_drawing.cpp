@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "graftal/graftal.hpp"
-#include "graftal/pipeline.hpp"
+#include "graftal/pipeline/pipeline.hpp"
 #include "process.hpp"
 #include "test_helpers.hpp"
 

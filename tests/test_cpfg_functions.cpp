@@ -7,10 +7,10 @@
 #include <functional>
 #include <string>
 
-#include "graftal/contour.hpp"
-#include "graftal/curve_xyz.hpp"
 #include "graftal/graftal.hpp"
-#include "graftal/graphical_function.hpp"
+#include "graftal/lang/contour_file.hpp"
+#include "graftal/lang/curve_xyz.hpp"
+#include "graftal/lang/graphical_function.hpp"
 #include "process.hpp"
 #include "test_helpers.hpp"
 

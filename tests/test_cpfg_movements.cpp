@@ -6,7 +6,7 @@
 #include <string>
 
 #include "graftal/graftal.hpp"
-#include "graftal/streamed_interpretation.hpp"
+#include "graftal/turtle/streamed_interpretation.hpp"
 #include "process.hpp"
 
 using namespace graftal;

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "graftal/turtle.hpp"
+#include "graftal/turtle/turtle.hpp"
 #include "test_helpers.hpp"
 
 namespace {

@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
+#include "graftal/geometry/material_file.hpp"
 #include "graftal/graftal.hpp"
-#include "graftal/material_file.hpp"
-#include "graftal/pipeline.hpp"
+#include "graftal/pipeline/pipeline.hpp"
 #include "process.hpp"
 
 using namespace graftal;

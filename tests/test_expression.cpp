@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "graftal/expression.hpp"
+#include "graftal/lang/expression.hpp"
 
 using namespace graftal;
 

@@ -8,9 +8,9 @@
 #include <fstream>
 #include <thread>
 
-#include "graftal/file_reading.hpp"
-#include "graftal/model.hpp"
-#include "graftal/surface.hpp"
+#include "graftal/core/file_reading.hpp"
+#include "graftal/geometry/surface.hpp"
+#include "graftal/lang/model.hpp"
 #include "process.hpp"
 
 using graftal::testing::runGraftal;

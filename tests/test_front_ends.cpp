@@ -12,13 +12,13 @@
 #include <string>
 #include <vector>
 
-#include "graftal/animation.hpp"
-#include "graftal/export.hpp"
-#include "graftal/map_lsystem.hpp"
-#include "graftal/model.hpp"
-#include "graftal/stages.hpp"
+#include "graftal/lang/model.hpp"
+#include "graftal/maps/map_lsystem.hpp"
+#include "graftal/pipeline/animation.hpp"
+#include "graftal/pipeline/export.hpp"
+#include "graftal/pipeline/stages.hpp"
+#include "graftal/studio/studio_model.hpp"
 #include "process.hpp"
-#include "studio/studio_model.hpp"
 
 namespace graftal {
 namespace {
@@ -52,8 +52,8 @@ studio::ModelInput studioInput(const fs::path& file) {
 }
 
 fs::path scratchFolder() {
-    const fs::path dir = fs::temp_directory_path() / ("graftal-front-ends-" +
-                                                     std::to_string(::getpid()));
+    const fs::path dir =
+        fs::temp_directory_path() / ("graftal-front-ends-" + std::to_string(::getpid()));
     fs::create_directories(dir);
     return dir;
 }
@@ -141,8 +141,7 @@ TEST(FrontEnds, EveryTwoDimensionalExampleLooksTheSameInTheCommandTheStudioAndAn
 
         // An animation's last frame is the command's PNG.
         const fs::path png = scratch / "cli.png";
-        ASSERT_EQ(runGraftal("render '" + file.string() + "' -o '" + png.string() + "'").status,
-                  0);
+        ASSERT_EQ(runGraftal("render '" + file.string() + "' -o '" + png.string() + "'").status, 0);
         AnimationRequest animation;
         animation.from = d.steps;
         const std::vector<AnimationFrame> frames = animationFrames(model, animation);
@@ -189,8 +188,8 @@ TEST(FrontEnds, AThreeDimensionalPlantIsTheSameFileFromTheCommandAndTheStudio) {
         const fs::path file = kExamples / name;
         for (const char* format : {"glb", "ply", "png"}) {
             const fs::path out = scratch / (std::string("cli.") + format);
-            const testing::RunResult cli = runGraftal("render '" + file.string() + "' -o '" +
-                                                      out.string() + "'");
+            const testing::RunResult cli =
+                runGraftal("render '" + file.string() + "' -o '" + out.string() + "'");
             ASSERT_EQ(cli.status, 0) << cli.err;
             const studio::ExportedFile exported =
                 studio::exportFile(studioInput(file), format, studio::StudioLimits{}, {}, scratch);
@@ -205,8 +204,7 @@ TEST(FrontEnds, StandardOutputGetsTheFileBytesWithoutAScratchFile) {
     const fs::path file = kExamples / "fig3.4-plant.l";
     const fs::path out = scratch / "plant.glb";
     ASSERT_EQ(runGraftal("render '" + file.string() + "' -o '" + out.string() + "'").status, 0);
-    const testing::RunResult piped =
-        runGraftal("render '" + file.string() + "' -o - --format glb");
+    const testing::RunResult piped = runGraftal("render '" + file.string() + "' -o - --format glb");
     ASSERT_EQ(piped.status, 0) << piped.err;
     EXPECT_EQ(piped.out, readFile(out));
     // In memory, through the registry, the same bytes again.

@@ -8,9 +8,10 @@
 #include <cstdint>
 #include <string>
 
-#include "graftal/contour.hpp"
-#include "graftal/generalized_cylinder.hpp"
+#include "graftal/geometry/contour_points.hpp"
+#include "graftal/geometry/generalized_cylinder.hpp"
 #include "graftal/graftal.hpp"
+#include "graftal/lang/contour_file.hpp"
 #include "process.hpp"
 #include "test_helpers.hpp"
 

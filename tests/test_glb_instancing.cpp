@@ -15,9 +15,9 @@
 
 #include "glb_reader.hpp"
 #include "gltf_validator.hpp"
-#include "graftal/mesh.hpp"
-#include "graftal/mesh_scene.hpp"
-#include "graftal/output.hpp"
+#include "graftal/geometry/mesh.hpp"
+#include "graftal/geometry/mesh_scene.hpp"
+#include "graftal/output/output.hpp"
 #include "output/instance_transform.hpp"
 #include "process.hpp"
 

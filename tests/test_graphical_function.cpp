@@ -6,7 +6,7 @@
 #include <string>
 
 #include "graftal/graftal.hpp"
-#include "graftal/graphical_function.hpp"
+#include "graftal/lang/graphical_function.hpp"
 #include "process.hpp"
 #include "test_helpers.hpp"
 

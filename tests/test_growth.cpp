@@ -6,7 +6,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "graftal/growth.hpp"
+#include "graftal/rewrite/growth.hpp"
 #include "test_helpers.hpp"
 
 using namespace graftal;

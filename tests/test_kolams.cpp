@@ -6,8 +6,8 @@
 #include <cmath>
 #include <map>
 
-#include "graftal/kolam.hpp"
-#include "graftal/pipeline.hpp"
+#include "graftal/geometry/kolam.hpp"
+#include "graftal/pipeline/pipeline.hpp"
 #include "process.hpp"
 #include "test_helpers.hpp"
 

@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "graftal/plane_map.hpp"
+#include "graftal/maps/plane_map.hpp"
 #include "process.hpp"
 
 using graftal::testing::runGraftal;

@@ -4,8 +4,8 @@
 
 #include <filesystem>
 
-#include "graftal/map_lsystem.hpp"
-#include "graftal/model.hpp"
+#include "graftal/lang/model.hpp"
+#include "graftal/maps/map_lsystem.hpp"
 
 using namespace graftal;
 namespace fs = std::filesystem;

@@ -10,9 +10,9 @@
 #include <numeric>
 #include <sstream>
 
-#include "graftal/map_drawing.hpp"
-#include "graftal/map_lsystem.hpp"
-#include "graftal/plane_map.hpp"
+#include "graftal/maps/map_drawing.hpp"
+#include "graftal/maps/map_lsystem.hpp"
+#include "graftal/maps/plane_map.hpp"
 
 using namespace graftal;
 namespace fs = std::filesystem;

@@ -9,10 +9,10 @@
 #include <sstream>
 #include <tuple>
 
+#include "graftal/core/vec3.hpp"
+#include "graftal/geometry/mesh.hpp"
+#include "graftal/geometry/surface.hpp"
 #include "graftal/graftal.hpp"
-#include "graftal/mesh.hpp"
-#include "graftal/surface.hpp"
-#include "graftal/vec3.hpp"
 
 namespace {
 

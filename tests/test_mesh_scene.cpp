@@ -14,11 +14,11 @@
 #include <unordered_map>
 #include <vector>
 
+#include "graftal/core/vec3.hpp"
+#include "graftal/geometry/mesh.hpp"
+#include "graftal/geometry/mesh_scene.hpp"
+#include "graftal/geometry/surface.hpp"
 #include "graftal/graftal.hpp"
-#include "graftal/mesh.hpp"
-#include "graftal/mesh_scene.hpp"
-#include "graftal/surface.hpp"
-#include "graftal/vec3.hpp"
 #include "test_helpers.hpp"
 
 namespace {

@@ -12,10 +12,10 @@
 #include <utility>
 #include <vector>
 
+#include "graftal/geometry/mesh.hpp"
+#include "graftal/geometry/surface.hpp"
 #include "graftal/graftal.hpp"
-#include "graftal/mesh.hpp"
-#include "graftal/render3d.hpp"
-#include "graftal/surface.hpp"
+#include "graftal/output/render3d.hpp"
 #include "test_helpers.hpp"
 
 using namespace graftal;

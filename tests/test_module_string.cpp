@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "graftal/module_string.hpp"
+#include "graftal/core/module_string.hpp"
 
 using namespace graftal;
 

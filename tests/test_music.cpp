@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <regex>
 
-#include "graftal/music.hpp"
+#include "graftal/music/music.hpp"
 #include "process.hpp"
 #include "test_helpers.hpp"
 

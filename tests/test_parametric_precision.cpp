@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "graftal/derivation.hpp"
+#include "graftal/rewrite/derivation.hpp"
 #include "process.hpp"
 #include "test_helpers.hpp"
 

@@ -18,9 +18,9 @@
 #include <string>
 #include <vector>
 
-#include "graftal/diagnostics.hpp"
-#include "graftal/mesh.hpp"
-#include "graftal/render3d.hpp"
+#include "graftal/core/diagnostics.hpp"
+#include "graftal/geometry/mesh.hpp"
+#include "graftal/output/render3d.hpp"
 
 namespace graftal {
 namespace {

@@ -10,10 +10,10 @@
 #include <cstdlib>
 #include <vector>
 
-#include "graftal/diagnostics.hpp"
-#include "graftal/framed_picture.hpp"
-#include "graftal/mesh_scene.hpp"
-#include "graftal/render3d.hpp"
+#include "graftal/core/diagnostics.hpp"
+#include "graftal/geometry/mesh_scene.hpp"
+#include "graftal/output/framed_picture.hpp"
+#include "graftal/output/render3d.hpp"
 
 namespace graftal {
 namespace {

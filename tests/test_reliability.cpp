@@ -17,19 +17,19 @@
 #include <thread>
 #include <vector>
 
-#include "graftal/diagnostics.hpp"
-#include "graftal/mesh.hpp"
-#include "graftal/music.hpp"
-#include "graftal/render3d.hpp"
+#include "graftal/core/diagnostics.hpp"
+#include "graftal/geometry/mesh.hpp"
+#include "graftal/lang/source_text.hpp"
+#include "graftal/music/music.hpp"
+#include "graftal/output/render3d.hpp"
+#include "graftal/studio/studio_server.hpp"
 #include "lang/preprocessor.hpp"
-#include "lang/source_text.hpp"
 #include "process.hpp"
-#include "studio/studio_server.hpp"
 
 namespace fs = std::filesystem;
-using nlohmann::json;
 using graftal::testing::runGraftal;
 using graftal::testing::TempDir;
+using nlohmann::json;
 
 namespace {
 
@@ -84,9 +84,9 @@ TEST(Reliability, WavOfALongScoreIsRefusedWithinTheMemoryLimit) {
 TEST(Reliability, MusicCommandHonoursTheMemoryLimitAndRefusesAnAbsurdTempo) {
     TempDir dir;
     const auto started = std::chrono::steady_clock::now();
-    auto r = runGraftal("music -q --memory-limit 64M " +
-                        regression("music-wav-unbounded-buffer.l") + " -o " +
-                        (dir.path() / "x.wav").string());
+    auto r =
+        runGraftal("music -q --memory-limit 64M " + regression("music-wav-unbounded-buffer.l") +
+                   " -o " + (dir.path() / "x.wav").string());
     EXPECT_EQ(r.status, 1) << r.err;
     EXPECT_NE(r.err.find("over the memory limit of 64 MiB"), std::string::npos) << r.err;
     EXPECT_LT(std::chrono::steady_clock::now() - started, std::chrono::seconds(30));
@@ -218,8 +218,8 @@ TEST(Reliability, RayTracerRefusesCameraValuesOutOfRange) {
     o.width = o.height = 8;
     o.threads = 1;
     EXPECT_EQ(graftal::renderRaytracedPixels(triangle, o).size(), 8u * 8u * 3u);
-    for (const graftal::Vec3 far : {graftal::Vec3{1e300, 0, 0}, graftal::Vec3{0, 2e15, 0},
-                                    graftal::Vec3{0, 0, 1e19}}) {
+    for (const graftal::Vec3 far :
+         {graftal::Vec3{1e300, 0, 0}, graftal::Vec3{0, 2e15, 0}, graftal::Vec3{0, 0, 1e19}}) {
         o.camera.viewpoint = far;
         EXPECT_THROW(graftal::renderRaytracedPixels(triangle, o), graftal::Error) << far.z;
     }
@@ -337,16 +337,16 @@ TEST_F(StudioGuardTest, NumbersAreRangeChecked) {
     auto c = client();
     for (const json& steps : {json(4294967297ull), json(-1), json(99999999999ll), json(2.5),
                               json(18446744073709551615ull), json("3")}) {
-        auto r = c.Post("/api/derive", json{{"text", "axiom: F\nF --> FF\n"}, {"steps", steps}}
-                                           .dump(),
-                        "application/json");
+        auto r =
+            c.Post("/api/derive", json{{"text", "axiom: F\nF --> FF\n"}, {"steps", steps}}.dump(),
+                   "application/json");
         ASSERT_TRUE(r);
         EXPECT_EQ(r->status, 400) << steps.dump();
         EXPECT_NE(parse(r)["error"].get<std::string>().find("\"steps\""), std::string::npos)
             << r->body;
     }
-    auto ok = c.Post("/api/parse", json{{"text", "axiom: F\n"}, {"steps", 3}}.dump(),
-                     "application/json");
+    auto ok =
+        c.Post("/api/parse", json{{"text", "axiom: F\n"}, {"steps", 3}}.dump(), "application/json");
     EXPECT_EQ(ok->status, 200);
     auto watch = c.Get("/api/watch?path=koch.l&since=abc");
     ASSERT_TRUE(watch);
@@ -361,10 +361,10 @@ TEST_F(StudioGuardTest, AFarViewpointInAViewFileIsAnErrorAndTheServerLives) {
     std::ifstream in(root / "fern.l");
     const std::string text((std::istreambuf_iterator<char>(in)), {});
     auto c = client();
-    auto r = c.Post("/api/export",
-                    json{{"text", text}, {"path", "fern.l"}, {"steps", 3}, {"format", "png"}}
-                        .dump(),
-                    "application/json");
+    auto r =
+        c.Post("/api/export",
+               json{{"text", text}, {"path", "fern.l"}, {"steps", 3}, {"format", "png"}}.dump(),
+               "application/json");
     ASSERT_TRUE(r) << "the server died";
     EXPECT_EQ(r->status, 422);
     EXPECT_NE(r->body.find("viewpoint"), std::string::npos) << r->body;
@@ -375,8 +375,8 @@ TEST_F(StudioGuardTest, OverItsDerivationsTheServerAnswers503AndLivesOn) {
     start(/*maxDerivations=*/1, /*busyWait=*/300);
     auto slow = std::async(std::launch::async, [&] {
         auto c = client();
-        return c.Post("/api/derive", json{{"text", kSlow}, {"session", "a"}}.dump(),
-                      "application/json")
+        return c
+            .Post("/api/derive", json{{"text", kSlow}, {"session", "a"}}.dump(), "application/json")
             ->status;
     });
     std::this_thread::sleep_for(std::chrono::milliseconds(500));

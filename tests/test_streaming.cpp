@@ -3,10 +3,10 @@
 
 #include <cairo.h>
 
-#include "graftal/pipeline.hpp"
-#include "graftal/streamed_interpretation.hpp"
-#include "graftal/streamed_picture.hpp"
-#include "graftal/streaming.hpp"
+#include "graftal/output/streamed_picture.hpp"
+#include "graftal/pipeline/pipeline.hpp"
+#include "graftal/rewrite/streaming.hpp"
+#include "graftal/turtle/streamed_interpretation.hpp"
 #include "process.hpp"
 #include "test_helpers.hpp"
 

@@ -12,7 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
-#include "studio/studio_server.hpp"
+#include "graftal/studio/studio_server.hpp"
 
 namespace fs = std::filesystem;
 using nlohmann::json;

@@ -9,12 +9,12 @@
 #include <iterator>
 #include <string>
 
-#include "graftal/bspline.hpp"
-#include "graftal/model.hpp"
-#include "graftal/polyline_scene.hpp"
-#include "graftal/turtle.hpp"
-#include "studio/line_buffer.hpp"
-#include "studio/studio_model.hpp"
+#include "graftal/geometry/bspline.hpp"
+#include "graftal/lang/model.hpp"
+#include "graftal/studio/line_buffer.hpp"
+#include "graftal/studio/studio_model.hpp"
+#include "graftal/turtle/polyline_scene.hpp"
+#include "graftal/turtle/turtle.hpp"
 
 namespace fs = std::filesystem;
 using namespace graftal;

@@ -14,10 +14,10 @@
 #include <sstream>
 #include <tuple>
 
-#include "graftal/derivation.hpp"
-#include "graftal/model.hpp"
-#include "graftal/turtle.hpp"
-#include "studio/studio_server.hpp"
+#include "graftal/lang/model.hpp"
+#include "graftal/rewrite/derivation.hpp"
+#include "graftal/studio/studio_server.hpp"
+#include "graftal/turtle/turtle.hpp"
 
 namespace fs = std::filesystem;
 using nlohmann::json;

@@ -6,13 +6,13 @@
 
 #include <cmath>
 
-#include "graftal/streamed_interpretation.hpp"
-#include "graftal/streamed_picture.hpp"
-#include "graftal/turtle.hpp"
+#include "graftal/output/streamed_picture.hpp"
+#include "graftal/turtle/streamed_interpretation.hpp"
+#include "graftal/turtle/subtree_summaries.hpp"
+#include "graftal/turtle/turtle.hpp"
 #include "output/summarised_png.hpp"
 #include "process.hpp"
 #include "test_helpers.hpp"
-#include "turtle/subtree_summaries.hpp"
 
 using namespace graftal;
 using graftal::testing::loadExample;

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "graftal/color_map.hpp"
-#include "graftal/surface.hpp"
+#include "graftal/geometry/color_map.hpp"
+#include "graftal/geometry/surface.hpp"
 
 using namespace graftal;
 

@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "graftal/diagnostics.hpp"
-#include "graftal/output.hpp"
+#include "graftal/core/diagnostics.hpp"
+#include "graftal/output/output.hpp"
 
 namespace graftal {
 namespace {

@@ -1,4 +1,4 @@
-#include "core/thread_pool.hpp"
+#include "graftal/core/thread_pool.hpp"
 
 #include <gtest/gtest.h>
 

@@ -8,9 +8,9 @@
 #include <random>
 #include <vector>
 
+#include "graftal/core/vec3.hpp"
+#include "graftal/geometry/mesh.hpp"
 #include "graftal/graftal.hpp"
-#include "graftal/mesh.hpp"
-#include "graftal/vec3.hpp"
 
 namespace {
 

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "graftal/geometry/projection.hpp"
 #include "graftal/graftal.hpp"
-#include "graftal/projection.hpp"
 #include "test_helpers.hpp"
 
 using namespace graftal;
@@ -29,7 +29,7 @@ std::vector<Diagnostic> warningsOf(const std::string& text) {
 // `successor` drawn in a cpfg file with `view` as its view settings.
 Scene cpfgScene(const std::string& successor, const std::string& view) {
     Model ls = parseModel("Lsystem: 1\n" + view + "derivation length: 1\naxiom: A\nA --> " +
-                       successor + "\nendlsystem\n");
+                          successor + "\nendlsystem\n");
     return interpret(ls, deriveWithQueries(ls));
 }
 

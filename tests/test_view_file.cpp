@@ -8,7 +8,7 @@
 #include <string>
 
 #include "graftal/graftal.hpp"
-#include "graftal/view_file.hpp"
+#include "graftal/lang/view_file.hpp"
 #include "process.hpp"
 
 using namespace graftal;

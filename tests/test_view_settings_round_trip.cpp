@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "graftal/map_lsystem.hpp"
-#include "graftal/model.hpp"
-#include "graftal/view_settings.hpp"
+#include "graftal/lang/model.hpp"
+#include "graftal/lang/view_settings.hpp"
+#include "graftal/maps/map_lsystem.hpp"
 
 namespace fs = std::filesystem;
 using namespace graftal;

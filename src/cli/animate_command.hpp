@@ -7,7 +7,7 @@
 #include <string>
 
 #include "commands.hpp"
-#include "graftal/animation.hpp"
+#include "graftal/pipeline/animation.hpp"
 
 namespace graftal::cli {
 

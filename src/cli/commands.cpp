@@ -11,16 +11,16 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
-#include "graftal/derivation.hpp"
-#include "graftal/growth.hpp"
-#include "graftal/lsystem.hpp"
-#include "graftal/model.hpp"
-#include "graftal/pipeline.hpp"
-#include "graftal/stages.hpp"
-#include "graftal/statistics.hpp"
-#include "graftal/streamed_interpretation.hpp"
-#include "graftal/streaming.hpp"
-#include "graftal/turtle.hpp"
+#include "graftal/lang/lsystem.hpp"
+#include "graftal/lang/model.hpp"
+#include "graftal/pipeline/pipeline.hpp"
+#include "graftal/pipeline/stages.hpp"
+#include "graftal/pipeline/statistics.hpp"
+#include "graftal/rewrite/derivation.hpp"
+#include "graftal/rewrite/growth.hpp"
+#include "graftal/rewrite/streaming.hpp"
+#include "graftal/turtle/streamed_interpretation.hpp"
+#include "graftal/turtle/turtle.hpp"
 #include "progress_line.hpp"
 #include "standard_streams.hpp"
 

@@ -7,14 +7,14 @@
 #include <optional>
 #include <string>
 
-#include "graftal/derivation.hpp"
-#include "graftal/lsystem.hpp"
-#include "graftal/model.hpp"
-#include "graftal/module_string.hpp"
-#include "graftal/output.hpp"
-#include "graftal/destination.hpp"
-#include "graftal/export.hpp"
-#include "graftal/pipeline.hpp"
+#include "graftal/core/destination.hpp"
+#include "graftal/core/module_string.hpp"
+#include "graftal/lang/lsystem.hpp"
+#include "graftal/lang/model.hpp"
+#include "graftal/output/output.hpp"
+#include "graftal/pipeline/export.hpp"
+#include "graftal/pipeline/pipeline.hpp"
+#include "graftal/rewrite/derivation.hpp"
 
 namespace graftal::cli {
 

@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
-#include "graftal/streaming.hpp"
+#include "graftal/rewrite/streaming.hpp"
 
 namespace graftal::cli {
 

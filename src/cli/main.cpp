@@ -5,8 +5,8 @@
 
 #include "animate_command.hpp"
 #include "commands.hpp"
-#include "graftal/diagnostics.hpp"
-#include "graftal/file_format.hpp"
+#include "graftal/core/diagnostics.hpp"
+#include "graftal/core/file_format.hpp"
 #include "map_commands.hpp"
 #include "music_command.hpp"
 #include "studio_command.hpp"

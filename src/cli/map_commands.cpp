@@ -6,11 +6,11 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
-#include "graftal/map_drawing.hpp"
-#include "graftal/map_lsystem.hpp"
-#include "graftal/output.hpp"
-#include "graftal/plane_map.hpp"
-#include "graftal/stages.hpp"
+#include "graftal/maps/map_drawing.hpp"
+#include "graftal/maps/map_lsystem.hpp"
+#include "graftal/maps/plane_map.hpp"
+#include "graftal/output/output.hpp"
+#include "graftal/pipeline/stages.hpp"
 #include "standard_streams.hpp"
 
 namespace graftal::cli {

@@ -5,8 +5,8 @@
 #include <filesystem>
 
 #include "commands.hpp"
-#include "graftal/export.hpp"
-#include "graftal/music.hpp"
+#include "graftal/music/music.hpp"
+#include "graftal/pipeline/export.hpp"
 
 namespace graftal::cli {
 

@@ -7,9 +7,9 @@
 #include <optional>
 
 #include "commands.hpp"
-#include "graftal/file_format.hpp"
-#include "graftal/export.hpp"
-#include "graftal/pipeline.hpp"
+#include "graftal/core/file_format.hpp"
+#include "graftal/pipeline/export.hpp"
+#include "graftal/pipeline/pipeline.hpp"
 #include "standard_streams.hpp"
 
 namespace graftal::cli {

@@ -7,8 +7,8 @@
 #include <optional>
 #include <sstream>
 
-#include "graftal/diagnostics.hpp"
-#include "graftal/file_reading.hpp"
+#include "graftal/core/diagnostics.hpp"
+#include "graftal/core/file_reading.hpp"
 
 namespace graftal::cli {
 

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <string>
 
-#include "graftal/file_format.hpp"
+#include "graftal/core/file_format.hpp"
 
 namespace graftal::cli {
 

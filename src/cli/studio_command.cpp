@@ -10,7 +10,7 @@
 #include <filesystem>
 #include <iostream>
 
-#include "studio/studio_server.hpp"
+#include "graftal/studio/studio_server.hpp"
 #include "studio_command.hpp"
 
 namespace graftal::cli {
@@ -87,10 +87,11 @@ int runStudio(const StudioCommandOptions& options) {
         fs::temp_directory_path() / ("graftal-studio-" + std::to_string(::getpid()) + ".html");
     if (!options.noOpen) {
         const int fd = ::open(redirect.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
-        const std::string page = "<!doctype html><meta http-equiv=\"refresh\" content=\"0;url=" +
-                                 address + "\"><a href=\"" + address + "\">graftal studio</a>\n";
-        const bool written = fd >= 0 && ::write(fd, page.data(), page.size()) ==
-                                            static_cast<ssize_t>(page.size());
+        const std::string page =
+            "<!doctype html><meta http-equiv=\"refresh\" content=\"0;url=" + address +
+            "\"><a href=\"" + address + "\">graftal studio</a>\n";
+        const bool written =
+            fd >= 0 && ::write(fd, page.data(), page.size()) == static_cast<ssize_t>(page.size());
         if (fd >= 0) ::close(fd);
         const std::string command = "xdg-open '" + redirect.string() + "' >/dev/null 2>&1 &";
         if (!written || std::system(command.c_str()) != 0)

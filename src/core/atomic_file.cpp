@@ -1,5 +1,5 @@
 // The one atomic file writer (see atomic_file.hpp).
-#include "graftal/atomic_file.hpp"
+#include "graftal/core/atomic_file.hpp"
 
 #include <unistd.h>
 

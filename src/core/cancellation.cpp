@@ -1,4 +1,4 @@
-#include "graftal/cancellation.hpp"
+#include "graftal/core/cancellation.hpp"
 
 namespace graftal {
 

@@ -1,5 +1,5 @@
 // Destinations of written bytes (destination.hpp).
-#include "graftal/destination.hpp"
+#include "graftal/core/destination.hpp"
 
 #include <unistd.h>
 
@@ -9,7 +9,7 @@
 #include <sstream>
 #include <system_error>
 
-#include "graftal/atomic_file.hpp"
+#include "graftal/core/atomic_file.hpp"
 
 namespace graftal {
 
@@ -62,8 +62,8 @@ class TemporaryFile {
         std::error_code ec;
         fs::path dir = fs::temp_directory_path(ec);
         if (ec) dir = "/tmp";
-        path_ = dir / ("graftal-" + std::to_string(::getpid()) + "-" +
-                       std::to_string(counter++) + extension);
+        path_ = dir / ("graftal-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) +
+                       extension);
     }
     ~TemporaryFile() {
         std::error_code ec;

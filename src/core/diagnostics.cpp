@@ -1,4 +1,4 @@
-#include "graftal/diagnostics.hpp"
+#include "graftal/core/diagnostics.hpp"
 
 #include <sstream>
 

@@ -1,4 +1,4 @@
-#include "graftal/file_format.hpp"
+#include "graftal/core/file_format.hpp"
 
 #include <array>
 #include <cctype>

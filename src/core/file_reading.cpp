@@ -1,5 +1,5 @@
 // Reading a file whose name comes from user text (see file_reading.hpp for why).
-#include "graftal/file_reading.hpp"
+#include "graftal/core/file_reading.hpp"
 
 #include <cerrno>
 #include <cstring>

@@ -1,6 +1,6 @@
-#include "graftal/module_string.hpp"
+#include "graftal/core/module_string.hpp"
 
-#include "graftal/diagnostics.hpp"
+#include "graftal/core/diagnostics.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -11,7 +11,7 @@
 
 #include <sys/mman.h>
 
-#include "parallel.hpp"
+#include "graftal/core/parallel.hpp"
 
 namespace graftal {
 

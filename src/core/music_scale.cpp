@@ -1,5 +1,5 @@
 // Scale names, scale lists and note names (see music_scale.hpp).
-#include "graftal/music_scale.hpp"
+#include "graftal/core/music_scale.hpp"
 
 #include <cctype>
 #include <cstdlib>

@@ -1,4 +1,4 @@
-#include "graftal/rgb.hpp"
+#include "graftal/core/rgb.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "thread_pool.hpp"
+#include "graftal/core/thread_pool.hpp"
 
 namespace graftal {
 

@@ -1,4 +1,4 @@
-#include "graftal/vec3.hpp"
+#include "graftal/core/vec3.hpp"
 
 namespace graftal {
 

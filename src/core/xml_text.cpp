@@ -1,4 +1,4 @@
-#include "graftal/xml_text.hpp"
+#include "graftal/core/xml_text.hpp"
 
 namespace graftal {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "graftal/surface.hpp"
+#include "graftal/geometry/surface.hpp"
 
 namespace graftal {
 

@@ -1,7 +1,7 @@
 // B-spline smoothing of turtle paths: the uniform cubic B-spline of a control polygon, and
 // the search for the chains of consecutive segments in a Scene whose points become the
 // control polygons (the book's Figures 2.10 and 2.11).
-#include "graftal/bspline.hpp"
+#include "graftal/geometry/bspline.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -10,7 +10,7 @@
 #include <string>
 #include <unordered_map>
 
-#include "graftal/diagnostics.hpp"
+#include "graftal/core/diagnostics.hpp"
 
 namespace graftal {
 

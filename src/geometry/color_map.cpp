@@ -1,7 +1,7 @@
 // Reading and writing cpfg's binary colour maps. cpfg reads 256 entries of three bytes
 // (fread(entry, 3, 1, fp) per colour) and sets no header; it does not check the size, so a
 // short file silently leaves colours undefined. Here any size but 768 bytes is an error.
-#include "graftal/color_map.hpp"
+#include "graftal/geometry/color_map.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -10,9 +10,9 @@
 #include <fstream>
 #include <iterator>
 
-#include "graftal/atomic_file.hpp"
-#include "graftal/diagnostics.hpp"
-#include "graftal/file_reading.hpp"
+#include "graftal/core/atomic_file.hpp"
+#include "graftal/core/diagnostics.hpp"
+#include "graftal/core/file_reading.hpp"
 
 namespace graftal {
 

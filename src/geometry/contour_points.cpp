@@ -3,7 +3,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "graftal/contour.hpp"
+#include "graftal/geometry/contour_points.hpp"
 
 namespace graftal {
 

@@ -2,7 +2,7 @@
 // definitions (its generalized-cylinder code interpolates position, and radius against a
 // curve parameter, by cubic Hermite polynomials), so that the centre line passes through
 // the points cpfg draws.
-#include "graftal/generalized_cylinder.hpp"
+#include "graftal/geometry/generalized_cylinder.hpp"
 
 #include <algorithm>
 #include <array>

@@ -2,7 +2,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "graftal/kolam.hpp"
+#include "graftal/geometry/kolam.hpp"
 
 namespace graftal {
 

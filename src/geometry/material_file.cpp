@@ -1,15 +1,15 @@
 // Reading cpfg's binary material files (layout in material_file.hpp). cpfg reads materials
 // until the file ends; a trailing piece shorter than a material is an error here, as a
 // truncated file would silently give wrong colours.
-#include "graftal/material_file.hpp"
+#include "graftal/geometry/material_file.hpp"
 
 #include <cerrno>
 #include <cstring>
 #include <fstream>
 #include <iterator>
 
-#include "graftal/diagnostics.hpp"
-#include "graftal/file_reading.hpp"
+#include "graftal/core/diagnostics.hpp"
+#include "graftal/core/file_reading.hpp"
 
 namespace graftal {
 

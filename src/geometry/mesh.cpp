@@ -9,18 +9,18 @@
 // Bézier surface. Duplicating every leaf back to back would double the polygons and put two
 // coincident surfaces into the ray tracer, so viewers are asked to light both sides
 // instead (the glTF materials are double-sided).
-#include "graftal/mesh.hpp"
+#include "graftal/geometry/mesh.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
 
-#include "core/huge_pages.hpp"
-#include "graftal/diagnostics.hpp"
-#include "graftal/generalized_cylinder.hpp"
-#include "graftal/surface.hpp"
-#include "graftal/vec3.hpp"
+#include "graftal/core/diagnostics.hpp"
+#include "graftal/core/huge_pages.hpp"
+#include "graftal/core/vec3.hpp"
+#include "graftal/geometry/generalized_cylinder.hpp"
+#include "graftal/geometry/surface.hpp"
 #include "mesh_parts.hpp"
 #include "polygon_instancing.hpp"
 #include "polygon_triangulation.hpp"

@@ -4,9 +4,9 @@
 
 #include <vector>
 
-#include "graftal/mesh.hpp"
-#include "graftal/scene.hpp"
-#include "graftal/surface.hpp"
+#include "graftal/geometry/mesh.hpp"
+#include "graftal/geometry/scene.hpp"
+#include "graftal/geometry/surface.hpp"
 
 namespace graftal {
 class TubeMesher;

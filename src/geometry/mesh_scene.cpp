@@ -1,12 +1,12 @@
 // Instanced scenes: the transforms' arithmetic, what a scene counts and bounds as drawn,
 // flattening for formats without instancing (the builder is mesh_scene_builder.cpp).
-#include "graftal/mesh_scene.hpp"
+#include "graftal/geometry/mesh_scene.hpp"
 
 #include <cmath>
 #include <limits>
 #include <string>
 
-#include "graftal/diagnostics.hpp"
+#include "graftal/core/diagnostics.hpp"
 
 namespace graftal {
 

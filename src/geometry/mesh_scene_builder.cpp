@@ -9,9 +9,9 @@
 #include <tuple>
 #include <utility>
 
-#include "graftal/generalized_cylinder.hpp"
-#include "graftal/mesh_scene.hpp"
-#include "graftal/surface.hpp"
+#include "graftal/geometry/generalized_cylinder.hpp"
+#include "graftal/geometry/mesh_scene.hpp"
+#include "graftal/geometry/surface.hpp"
 #include "mesh_parts.hpp"
 #include "polygon_instancing.hpp"
 #include "round_shapes.hpp"

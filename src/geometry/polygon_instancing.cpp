@@ -11,7 +11,7 @@
 #include <map>
 #include <tuple>
 
-#include "graftal/vec3.hpp"
+#include "graftal/core/vec3.hpp"
 #include "polygon_triangulation.hpp"
 
 namespace graftal::meshing {

@@ -5,9 +5,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "graftal/mesh.hpp"
-#include "graftal/mesh_scene.hpp"
-#include "graftal/scene.hpp"
+#include "graftal/geometry/mesh.hpp"
+#include "graftal/geometry/mesh_scene.hpp"
+#include "graftal/geometry/scene.hpp"
 
 namespace graftal::meshing {
 

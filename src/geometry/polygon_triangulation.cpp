@@ -6,8 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "graftal/mesh.hpp"
-#include "graftal/vec3.hpp"
+#include "graftal/core/vec3.hpp"
+#include "graftal/geometry/mesh.hpp"
 
 namespace graftal {
 

@@ -6,7 +6,7 @@
 #include <span>
 #include <vector>
 
-#include "graftal/scene.hpp"
+#include "graftal/geometry/scene.hpp"
 
 namespace graftal {
 

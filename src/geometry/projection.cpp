@@ -1,4 +1,4 @@
-#include "graftal/projection.hpp"
+#include "graftal/geometry/projection.hpp"
 
 namespace graftal {
 

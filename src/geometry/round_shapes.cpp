@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "graftal/vec3.hpp"
+#include "graftal/core/vec3.hpp"
 
 namespace graftal {
 

@@ -4,9 +4,9 @@
 #include <cstddef>
 #include <optional>
 
-#include "graftal/mesh.hpp"
-#include "graftal/mesh_scene.hpp"
-#include "graftal/scene.hpp"
+#include "graftal/geometry/mesh.hpp"
+#include "graftal/geometry/mesh_scene.hpp"
+#include "graftal/geometry/scene.hpp"
 
 namespace graftal::meshing {
 

@@ -1,4 +1,4 @@
-#include "graftal/scene.hpp"
+#include "graftal/geometry/scene.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -11,8 +11,8 @@
 #include <sstream>
 #include <system_error>
 
-#include "graftal/file_reading.hpp"
-#include "graftal/surface.hpp"
+#include "graftal/core/file_reading.hpp"
+#include "graftal/geometry/surface.hpp"
 
 #include <dlfcn.h>
 

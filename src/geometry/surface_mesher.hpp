@@ -6,10 +6,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "graftal/mesh.hpp"
-#include "graftal/mesh_scene.hpp"
-#include "graftal/scene.hpp"
-#include "graftal/surface.hpp"
+#include "graftal/geometry/mesh.hpp"
+#include "graftal/geometry/mesh_scene.hpp"
+#include "graftal/geometry/scene.hpp"
+#include "graftal/geometry/surface.hpp"
 
 namespace graftal::meshing {
 

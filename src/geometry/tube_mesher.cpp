@@ -7,9 +7,9 @@
 #include <limits>
 #include <numbers>
 
-#include "core/parallel.hpp"
-#include "graftal/diagnostics.hpp"
-#include "graftal/vec3.hpp"
+#include "graftal/core/diagnostics.hpp"
+#include "graftal/core/parallel.hpp"
+#include "graftal/core/vec3.hpp"
 
 namespace graftal {
 

@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "contour_setting.hpp"
-#include "graftal/contour.hpp"
+#include "graftal/lang/contour_file.hpp"
 #include "setting_file.hpp"
 
 namespace graftal {

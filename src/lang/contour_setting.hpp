@@ -2,8 +2,8 @@
 // the view's contours, for @#(ID) to pick.
 #pragma once
 
-#include "graftal/diagnostics.hpp"
-#include "graftal/parser_target.hpp"
+#include "graftal/core/diagnostics.hpp"
+#include "graftal/lang/parser_target.hpp"
 
 namespace graftal {
 

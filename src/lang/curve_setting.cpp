@@ -7,7 +7,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "graftal/curve_xyz.hpp"
+#include "graftal/lang/curve_xyz.hpp"
 #include "setting_file.hpp"
 
 namespace graftal {

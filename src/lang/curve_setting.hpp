@@ -2,9 +2,9 @@
 // into the L-system's curves, for curveX/Y/Z(id, t) with ids in the order of those lines.
 #pragma once
 
-#include "graftal/diagnostics.hpp"
-#include "graftal/lsystem.hpp"
-#include "graftal/parser_target.hpp"
+#include "graftal/core/diagnostics.hpp"
+#include "graftal/lang/lsystem.hpp"
+#include "graftal/lang/parser_target.hpp"
 
 namespace graftal {
 

@@ -2,13 +2,13 @@
 // so that curveX/Y/Z give cpfg's numbers: a uniform cubic B-spline evaluated on the knot
 // interval 3 + u (n - 3.000001), the end-point B-spline on clamped knots, and Bézier
 // segments of four points each; t is turned into u through a table of sampled lengths.
-#include "graftal/curve_xyz.hpp"
+#include "graftal/lang/curve_xyz.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 
-#include "graftal/diagnostics.hpp"
+#include "graftal/core/diagnostics.hpp"
 
 namespace graftal {
 

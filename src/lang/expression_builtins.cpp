@@ -6,7 +6,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "core/random_stream.hpp"
+#include "graftal/core/random_stream.hpp"
 
 namespace graftal {
 

@@ -1,7 +1,7 @@
 // The expression compiler: recursive descent from expression text to a postfix program,
 // resolving names (parameters, #defines, state, arrays) and checking arities; #defines
 // without parameters or random numbers fold to constants.
-#include "graftal/expression.hpp"
+#include "graftal/lang/expression.hpp"
 
 #include <algorithm>
 #include <cctype>

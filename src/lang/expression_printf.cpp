@@ -1,6 +1,6 @@
 // cpfg's printf formatting: C's conversions applied to the doubles an expression computes
 // (printf and fprintf in expressions).
-#include "graftal/expression.hpp"
+#include "graftal/lang/expression.hpp"
 
 #include <cstdio>
 #include <cstring>

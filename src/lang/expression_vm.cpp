@@ -1,6 +1,6 @@
 // Running a compiled expression: the stack interpreter, and the shapes evaluate() runs
 // inline without it.
-#include "graftal/expression.hpp"
+#include "graftal/lang/expression.hpp"
 
 #include <algorithm>
 #include <array>
@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "core/random_stream.hpp"
 #include "expression_builtins.hpp"
-#include "graftal/module_string.hpp"
+#include "graftal/core/module_string.hpp"
+#include "graftal/core/random_stream.hpp"
 
 namespace graftal {
 

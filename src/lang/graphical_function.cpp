@@ -1,13 +1,13 @@
 // cpfg's graphical functions (see the header). The curve, the search and the sampling
 // follow cpfg's definitions so that func() gives cpfg's numbers, not just a close curve.
-#include "graftal/graphical_function.hpp"
+#include "graftal/lang/graphical_function.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
 
-#include "graftal/diagnostics.hpp"
+#include "graftal/core/diagnostics.hpp"
 
 namespace graftal {
 

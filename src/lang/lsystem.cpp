@@ -2,8 +2,8 @@
 // small queries over its productions.
 #include <ostream>
 
-#include "graftal/lsystem.hpp"
-#include "graftal/view_settings.hpp"
+#include "graftal/lang/lsystem.hpp"
+#include "graftal/lang/view_settings.hpp"
 
 namespace graftal {
 

@@ -1,18 +1,18 @@
 // Parsing to a Model with every diagnostic returned as a value.
-#include "graftal/model.hpp"
+#include "graftal/lang/model.hpp"
 
 #include <algorithm>
 #include <cctype>
 #include <fstream>
 #include <sstream>
 
-#include "graftal/contour.hpp"
-#include "graftal/file_reading.hpp"
-#include "graftal/parser_target.hpp"
-#include "graftal/view_file.hpp"
+#include "graftal/core/file_reading.hpp"
+#include "graftal/lang/contour_file.hpp"
+#include "graftal/lang/parser_target.hpp"
+#include "graftal/lang/source_text.hpp"
+#include "graftal/lang/view_file.hpp"
 #include "parser.hpp"
 #include "preprocessor.hpp"
-#include "source_text.hpp"
 
 namespace graftal {
 

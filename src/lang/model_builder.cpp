@@ -10,7 +10,7 @@
 
 #include "contour_setting.hpp"
 #include "curve_setting.hpp"
-#include "graftal/parser_target.hpp"
+#include "graftal/lang/parser_target.hpp"
 #include "setting_file.hpp"
 
 namespace graftal {

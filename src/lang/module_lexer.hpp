@@ -6,8 +6,8 @@
 #include <string_view>
 #include <vector>
 
-#include "graftal/diagnostics.hpp"
-#include "graftal/module_string.hpp"
+#include "graftal/core/diagnostics.hpp"
+#include "graftal/core/module_string.hpp"
 
 namespace graftal {
 

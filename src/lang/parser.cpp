@@ -5,7 +5,7 @@
 #include "closest_word.hpp"
 #include "view_setting_table.hpp"
 
-#include "graftal/model.hpp"
+#include "graftal/lang/model.hpp"
 
 #include <algorithm>
 #include <cctype>

@@ -8,10 +8,10 @@
 #include <string_view>
 #include <vector>
 
-#include "graftal/lsystem.hpp"
-#include "graftal/parser_target.hpp"
+#include "graftal/lang/lsystem.hpp"
+#include "graftal/lang/parser_target.hpp"
+#include "graftal/lang/source_text.hpp"
 #include "module_lexer.hpp"
-#include "source_text.hpp"
 #include "statement_parser.hpp"
 
 namespace graftal::parsing {

@@ -44,7 +44,7 @@ extern "C" {
 #include <sstream>
 #include <vector>
 
-#include "graftal/file_reading.hpp"
+#include "graftal/core/file_reading.hpp"
 
 namespace graftal {
 
@@ -87,8 +87,8 @@ int shieldMcppCompare(dl_phdr_info* info, std::size_t, void*) {
     const ElfW(Dyn)* dynamic = nullptr;
     for (int i = 0; i < info->dlpi_phnum; ++i)
         if (info->dlpi_phdr[i].p_type == PT_DYNAMIC)
-            dynamic = reinterpret_cast<const ElfW(Dyn)*>(info->dlpi_addr +
-                                                        info->dlpi_phdr[i].p_vaddr);
+            dynamic =
+                reinterpret_cast<const ElfW(Dyn)*>(info->dlpi_addr + info->dlpi_phdr[i].p_vaddr);
     if (!dynamic) return 1;
     ElfW(Addr) relocations = 0, symbols = 0, names = 0;
     std::size_t size = 0;

@@ -10,8 +10,8 @@
 #include <string>
 #include <string_view>
 
-#include "graftal/diagnostics.hpp"
-#include "source_text.hpp"
+#include "graftal/core/diagnostics.hpp"
+#include "graftal/lang/source_text.hpp"
 
 namespace graftal {
 

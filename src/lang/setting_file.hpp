@@ -7,9 +7,9 @@
 #include <optional>
 #include <string>
 
-#include "graftal/diagnostics.hpp"
-#include "graftal/file_reading.hpp"
-#include "graftal/parser_target.hpp"
+#include "graftal/core/diagnostics.hpp"
+#include "graftal/core/file_reading.hpp"
+#include "graftal/lang/parser_target.hpp"
 
 namespace graftal {
 

@@ -1,4 +1,4 @@
-#include "source_text.hpp"
+#include "graftal/lang/source_text.hpp"
 
 #include <algorithm>
 #include <cctype>

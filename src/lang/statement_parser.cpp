@@ -2,7 +2,7 @@
 // expressions inside are handed to the expression compiler.
 #include "statement_parser.hpp"
 
-#include "source_text.hpp"
+#include "graftal/lang/source_text.hpp"
 
 #include <algorithm>
 #include <cctype>

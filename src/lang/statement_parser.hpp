@@ -9,7 +9,7 @@
 #include <string_view>
 #include <vector>
 
-#include "graftal/lsystem.hpp"
+#include "graftal/lang/lsystem.hpp"
 
 namespace graftal::parsing {
 

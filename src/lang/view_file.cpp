@@ -3,7 +3,7 @@
 // "initial color:" and "initial colour:" both work, and a number may be followed by a unit
 // word ("initial line width: 3 pixels"). The values are handed to the target under the
 // settings' names.
-#include "graftal/view_file.hpp"
+#include "graftal/lang/view_file.hpp"
 
 #include <algorithm>
 #include <cctype>

@@ -3,7 +3,7 @@
 #include <sstream>
 #include <variant>
 
-#include "graftal/parser_target.hpp"
+#include "graftal/lang/parser_target.hpp"
 #include "view_setting_table.hpp"
 
 namespace graftal {

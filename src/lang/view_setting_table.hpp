@@ -8,8 +8,8 @@
 #include <string_view>
 #include <vector>
 
-#include "graftal/parser_target.hpp"
-#include "graftal/view_settings.hpp"
+#include "graftal/lang/parser_target.hpp"
+#include "graftal/lang/view_settings.hpp"
 
 namespace graftal {
 

@@ -5,8 +5,9 @@
 #include <cstdlib>
 #include <variant>
 
-#include "graftal/parser_target.hpp"
+#include "graftal/lang/parser_target.hpp"
 #include "view_setting_table.hpp"
+#include "view_setting_values.hpp"
 
 namespace graftal {
 
@@ -15,52 +16,7 @@ namespace {
 using Sources = SettingSources;
 using Value = SettingValue;
 using Syntax = CpfgSyntax;
-
-bool isZero(const Vec3& v) {
-    return v.x == 0 && v.y == 0 && v.z == 0;
-}
-
-std::string lowerCase(std::string s) {
-    for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return s;
-}
-
-double number(const ViewSetting& s) {
-    return std::get<double>(s.value);
-}
-const Vec3& vector(const ViewSetting& s) {
-    return std::get<Vec3>(s.value);
-}
-const std::string& text(const ViewSetting& s) {
-    return std::get<std::string>(s.value);
-}
-
-bool isWhole(double d) {
-    return d == std::floor(d);
-}
-
-// ---- printing -------------------------------------------------------------------------
-
-std::string num(double d) {
-    return formatNumber(d);
-}
-std::string vec(const Vec3& v) {
-    return num(v.x) + ", " + num(v.y) + ", " + num(v.z);
-}
-void line(std::ostream& os, std::string_view name, const std::string& value) {
-    os << name << ": " << value << '\n';
-}
-
-// ---- checks ---------------------------------------------------------------------------
-
-// A direction stored as a unit vector (the tropisms and the torque).
-std::string unitDirection(const ViewSetting& s, Vec3& out) {
-    const Vec3& v = vector(s);
-    double n = std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
-    if (n == 0) return "the " + s.name + " must not be zero";
-    out = {v.x / n, v.y / n, v.z / n};
-    return "";
-}
+using namespace view_setting_values;
 
 // surface: NAME FILE [SCALE]
 std::string applySurface(ViewSettings& view, const ViewSetting& setting) {

@@ -5,7 +5,7 @@
 #include <numeric>
 #include <sstream>
 
-#include "graftal/plane_map.hpp"
+#include "graftal/maps/plane_map.hpp"
 
 namespace graftal {
 

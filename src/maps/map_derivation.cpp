@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "graftal/plane_map.hpp"
+#include "graftal/maps/plane_map.hpp"
 
 namespace graftal {
 

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <functional>
 
-#include "graftal/bspline.hpp"
-#include "graftal/map_drawing.hpp"
+#include "graftal/geometry/bspline.hpp"
+#include "graftal/maps/map_drawing.hpp"
 
 namespace graftal {
 

@@ -3,7 +3,7 @@
 // centre of gravity.
 #pragma once
 
-#include "graftal/plane_map.hpp"
+#include "graftal/maps/plane_map.hpp"
 
 namespace graftal {
 

@@ -5,10 +5,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "graftal/expression.hpp"
-#include "graftal/file_reading.hpp"
-#include "graftal/map_lsystem.hpp"
-#include "lang/source_text.hpp"
+#include "graftal/core/file_reading.hpp"
+#include "graftal/lang/expression.hpp"
+#include "graftal/lang/source_text.hpp"
+#include "graftal/maps/map_lsystem.hpp"
 
 namespace graftal {
 

@@ -21,9 +21,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/huge_pages.hpp"
-#include "core/parallel.hpp"
-#include "core/thread_pool.hpp"
+#include "graftal/core/huge_pages.hpp"
+#include "graftal/core/parallel.hpp"
+#include "graftal/core/thread_pool.hpp"
 #include "map_outline.hpp"
 
 namespace graftal {

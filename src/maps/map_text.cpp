@@ -9,7 +9,7 @@
 // clockwise (the outside is on the left of its walk, as every cell is on the left of its).
 #include <sstream>
 
-#include "graftal/plane_map.hpp"
+#include "graftal/maps/plane_map.hpp"
 
 namespace graftal {
 

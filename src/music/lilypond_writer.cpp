@@ -9,14 +9,14 @@
 #include <chrono>
 #include <csignal>
 #include <cstdlib>
-#include <thread>
-#include <vector>
 #include <fstream>
 #include <sstream>
+#include <thread>
+#include <vector>
 
-#include "graftal/atomic_file.hpp"
-#include "graftal/music.hpp"
-#include "music/notation.hpp"
+#include "graftal/core/atomic_file.hpp"
+#include "graftal/music/music.hpp"
+#include "notation.hpp"
 
 extern char** environ;
 
@@ -145,8 +145,8 @@ RunResult run(const std::vector<std::string>& args, const fs::path& log, double 
     // before that, on time out and after it ended (taking what it started with it).
     while (true) {
         siginfo_t info{};
-        const int waited = ::waitid(P_PID, static_cast<id_t>(pid), &info,
-                                    WEXITED | WNOHANG | WNOWAIT);
+        const int waited =
+            ::waitid(P_PID, static_cast<id_t>(pid), &info, WEXITED | WNOHANG | WNOWAIT);
         if (waited < 0 && errno != EINTR) break;
         if (waited == 0 && info.si_pid == pid) break;
         if (std::chrono::steady_clock::now() >= deadline) {
@@ -252,8 +252,8 @@ void engraveScore(const Score& score, const fs::path& path) {
     if (ran.timedOut) {
         std::ostringstream limit;
         limit << seconds;
-        throw fileError(path, "cannot engrave the score: lilypond took longer than " +
-                                  limit.str() + " s on its " + std::to_string(bars) +
+        throw fileError(path, "cannot engrave the score: lilypond took longer than " + limit.str() +
+                                  " s on its " + std::to_string(bars) +
                                   " bars and was stopped: lower the steps or the unit, or "
                                   "write a .ly (or .mid) file instead");
     }

@@ -7,8 +7,8 @@
 #include <mutex>
 #include <string>
 
-#include "graftal/atomic_file.hpp"
-#include "graftal/music.hpp"
+#include "graftal/core/atomic_file.hpp"
+#include "graftal/music/music.hpp"
 
 namespace graftal {
 

@@ -1,8 +1,8 @@
 // A score written in the format its file name asks for.
 #include <cctype>
 
-#include "graftal/atomic_file.hpp"
-#include "graftal/music.hpp"
+#include "graftal/core/atomic_file.hpp"
+#include "graftal/music/music.hpp"
 
 namespace graftal {
 

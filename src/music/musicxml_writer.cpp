@@ -2,10 +2,10 @@
 #include <cmath>
 #include <sstream>
 
-#include "graftal/atomic_file.hpp"
-#include "graftal/music.hpp"
-#include "graftal/xml_text.hpp"
-#include "music/notation.hpp"
+#include "graftal/core/atomic_file.hpp"
+#include "graftal/core/xml_text.hpp"
+#include "graftal/music/music.hpp"
+#include "notation.hpp"
 
 namespace graftal {
 

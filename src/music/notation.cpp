@@ -1,5 +1,5 @@
 // Bars of plain and dotted note values (see notation.hpp).
-#include "music/notation.hpp"
+#include "notation.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "graftal/music.hpp"
+#include "graftal/music/music.hpp"
 
 namespace graftal::notation {
 

@@ -2,9 +2,9 @@
 #include <cmath>
 #include <sstream>
 
-#include "graftal/diagnostics.hpp"
-#include "graftal/music.hpp"
-#include "graftal/turtle.hpp"
+#include "graftal/core/diagnostics.hpp"
+#include "graftal/music/music.hpp"
+#include "graftal/turtle/turtle.hpp"
 
 namespace graftal {
 
@@ -38,8 +38,10 @@ void checkOptions(const MusicOptions& o) {
     if (!(o.tempo >= 4 && o.tempo <= 1000)) {
         std::ostringstream got;
         got << o.tempo;
-        throw musicError("the tempo is beats per minute, from 4 (the slowest a MIDI file holds) "
-                         "to 1000, got " + got.str());
+        throw musicError(
+            "the tempo is beats per minute, from 4 (the slowest a MIDI file holds) "
+            "to 1000, got " +
+            got.str());
     }
     if (o.instrument < 1 || o.instrument > 128)
         throw musicError("the instrument is a General MIDI program from 1 to 128, got " +

@@ -6,14 +6,14 @@
 #include <cstdint>
 #include <cstdlib>
 #include <iomanip>
+#include <mutex>
+#include <ostream>
 #include <sstream>
 #include <string>
 #include <vector>
-#include <mutex>
-#include <ostream>
 
-#include "graftal/atomic_file.hpp"
-#include "graftal/music.hpp"
+#include "graftal/core/atomic_file.hpp"
+#include "graftal/music/music.hpp"
 
 namespace graftal {
 
@@ -80,10 +80,10 @@ void checkAudioSize(double frames, const Score& score, const std::filesystem::pa
         throw fileError(path, "cannot write audio: " + length.str() +
                                   " is more than a WAV file holds (4 GiB): " + lower);
     if (bytes > static_cast<double>(audio.memoryLimit))
-        throw fileError(path, "cannot write audio: " + length.str() + " needs " +
-                                  megabytes(bytes) + " of memory, over the memory limit of " +
-                                  megabytes(static_cast<double>(audio.memoryLimit)) + ": " +
-                                  lower + " (or raise --memory-limit)");
+        throw fileError(path, "cannot write audio: " + length.str() + " needs " + megabytes(bytes) +
+                                  " of memory, over the memory limit of " +
+                                  megabytes(static_cast<double>(audio.memoryLimit)) + ": " + lower +
+                                  " (or raise --memory-limit)");
 }
 
 }  // namespace

@@ -7,8 +7,8 @@
 #include <string>
 #include <system_error>
 
-#include "graftal/animation_file.hpp"
-#include "graftal/atomic_file.hpp"
+#include "graftal/core/atomic_file.hpp"
+#include "graftal/output/animation_file.hpp"
 
 namespace graftal {
 

@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include "graftal/atomic_file.hpp"
-#include "graftal/diagnostics.hpp"
-#include "graftal/framed_picture.hpp"
-#include "graftal/output.hpp"
+#include "graftal/core/atomic_file.hpp"
+#include "graftal/core/diagnostics.hpp"
+#include "graftal/output/framed_picture.hpp"
+#include "graftal/output/output.hpp"
 #include "stroke_order.hpp"
 
 namespace graftal {
@@ -144,11 +144,13 @@ cairo_status_t writeToStream(void* closure, const unsigned char* data, unsigned 
 }  // namespace
 
 void writePng(const Scene& scene, const RenderOptions& o, const std::filesystem::path& path) {
-    writeStreamAtomically(path, [&](std::ostream& out) { writePng(scene, o, out, path); }, "PNG");
+    writeStreamAtomically(
+        path, [&](std::ostream& out) { writePng(scene, o, out, path); }, "PNG");
 }
 
 void writePdf(const Scene& scene, const RenderOptions& o, const std::filesystem::path& path) {
-    writeStreamAtomically(path, [&](std::ostream& out) { writePdf(scene, o, out, path); }, "PDF");
+    writeStreamAtomically(
+        path, [&](std::ostream& out) { writePdf(scene, o, out, path); }, "PDF");
 }
 
 void writePng(const Scene& scene, const RenderOptions& o, std::ostream& out,

@@ -5,14 +5,14 @@
 // Every cell has the same size, as in the book's filament (Fig 1.4): a column of cells then
 // lines up step after step. Text widths are estimated from character counts (the SVG writer
 // cannot measure text), generously enough for DejaVu Sans and its usual substitutes.
-#include "graftal/derivation_diagram.hpp"
+#include "graftal/output/derivation_diagram.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
 
-#include "graftal/diagnostics.hpp"
+#include "graftal/core/diagnostics.hpp"
 
 namespace graftal {
 

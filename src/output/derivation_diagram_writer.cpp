@@ -12,9 +12,9 @@
 #include <numbers>
 #include <sstream>
 
-#include "graftal/derivation_diagram.hpp"
-#include "graftal/diagnostics.hpp"
-#include "graftal/xml_text.hpp"
+#include "graftal/core/diagnostics.hpp"
+#include "graftal/core/xml_text.hpp"
+#include "graftal/output/derivation_diagram.hpp"
 
 namespace graftal {
 

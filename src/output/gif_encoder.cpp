@@ -18,8 +18,8 @@
 #include <unordered_map>
 #include <vector>
 
-#include "graftal/animation_file.hpp"
-#include "graftal/atomic_file.hpp"
+#include "graftal/core/atomic_file.hpp"
+#include "graftal/output/animation_file.hpp"
 
 namespace graftal {
 

@@ -21,9 +21,9 @@
 #include <utility>
 
 #include "glb_builder.hpp"
-#include "graftal/mesh.hpp"
-#include "graftal/mesh_scene.hpp"
-#include "graftal/output.hpp"
+#include "graftal/geometry/mesh.hpp"
+#include "graftal/geometry/mesh_scene.hpp"
+#include "graftal/output/output.hpp"
 #include "instance_transform.hpp"
 #include "mesh_file.hpp"
 
@@ -287,19 +287,17 @@ Mesh copiesOf(const MeshScene& scene, const std::vector<const MeshPlacement*>& w
     return out;
 }
 
-void writeDocument(const Destination& destination,
-                   const std::function<void(GltfDocument&)>& build, const std::vector<Rgb>& palette,
-                   const GlbOptions& options, std::size_t estimate) {
+void writeDocument(const Destination& destination, const std::function<void(GltfDocument&)>& build,
+                   const std::vector<Rgb>& palette, const GlbOptions& options,
+                   std::size_t estimate) {
     const std::string format(fileFormatInfo(FileFormat::Glb).name);
     // A file's directory is checked first, so that a missing one is reported before any work.
-    destination.write(
-        format,
-        [&](std::ostream& file) {
-            GltfDocument document(palette, options, destination.path());
-            document.reserve(estimate);
-            build(document);
-            document.write(file);
-        });
+    destination.write(format, [&](std::ostream& file) {
+        GltfDocument document(palette, options, destination.path());
+        document.reserve(estimate);
+        build(document);
+        document.write(file);
+    });
 }
 
 }  // namespace

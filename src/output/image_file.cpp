@@ -3,9 +3,9 @@
 // render never destroys the previous picture.
 #include <string>
 
-#include "graftal/destination.hpp"
-#include "graftal/diagnostics.hpp"
-#include "graftal/output.hpp"
+#include "graftal/core/destination.hpp"
+#include "graftal/core/diagnostics.hpp"
+#include "graftal/output/output.hpp"
 
 namespace graftal {
 

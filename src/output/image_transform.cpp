@@ -3,7 +3,7 @@
 #include <cmath>
 #include <string>
 
-#include "graftal/output.hpp"
+#include "graftal/output/output.hpp"
 
 namespace graftal {
 

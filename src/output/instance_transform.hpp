@@ -9,8 +9,8 @@
 #include <array>
 #include <optional>
 
-#include "graftal/mesh.hpp"
-#include "graftal/mesh_scene.hpp"
+#include "graftal/geometry/mesh.hpp"
+#include "graftal/geometry/mesh_scene.hpp"
 
 namespace graftal::instance_transform {
 

@@ -13,10 +13,10 @@
 #include <string_view>
 #include <vector>
 
-#include "graftal/atomic_file.hpp"
-#include "graftal/diagnostics.hpp"
-#include "graftal/mesh.hpp"
-#include "graftal/output.hpp"
+#include "graftal/core/atomic_file.hpp"
+#include "graftal/core/diagnostics.hpp"
+#include "graftal/geometry/mesh.hpp"
+#include "graftal/output/output.hpp"
 
 namespace graftal::mesh_file {
 

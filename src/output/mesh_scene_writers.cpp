@@ -1,8 +1,8 @@
 // OBJ and PLY files of an instanced scene: neither format can place one mesh several
 // times, so they are given the flattened mesh (every placement copied). The GLB writer
 // keeps the instancing (gltf_writer.cpp).
-#include "graftal/mesh_scene.hpp"
-#include "graftal/output.hpp"
+#include "graftal/geometry/mesh_scene.hpp"
+#include "graftal/output/output.hpp"
 
 namespace graftal {
 

@@ -14,8 +14,8 @@ extern "C" {
 #include <cmath>
 #include <string>
 
-#include "graftal/animation_file.hpp"
-#include "graftal/atomic_file.hpp"
+#include "graftal/core/atomic_file.hpp"
+#include "graftal/output/animation_file.hpp"
 
 namespace graftal {
 

@@ -3,8 +3,8 @@
 #include <charconv>
 #include <string>
 
-#include "graftal/mesh.hpp"
-#include "graftal/output.hpp"
+#include "graftal/geometry/mesh.hpp"
+#include "graftal/output/output.hpp"
 #include "mesh_file.hpp"
 
 namespace graftal {

@@ -8,8 +8,8 @@
 #include <limits>
 #include <string>
 
-#include "graftal/mesh.hpp"
-#include "graftal/output.hpp"
+#include "graftal/geometry/mesh.hpp"
+#include "graftal/output/output.hpp"
 #include "mesh_file.hpp"
 
 namespace graftal {

@@ -6,8 +6,9 @@
 #include <memory>
 #include <string>
 
-#include "graftal/animation_file.hpp"
-#include "graftal/atomic_file.hpp"
+#include "graftal/core/atomic_file.hpp"
+#include "graftal/core/destination.hpp"
+#include "graftal/output/animation_file.hpp"
 
 namespace graftal {
 
@@ -44,6 +45,11 @@ std::unique_ptr<AnimationEncoder> openPngFramesEncoder(const std::filesystem::pa
 }
 
 void writeRgbaPng(const RgbaImage& image, const std::filesystem::path& path) {
+    writeRgbaPng(image, Destination::file(path));
+}
+
+void writeRgbaPng(const RgbaImage& image, const Destination& destination) {
+    const std::filesystem::path& path = destination.path();
     using SurfacePtr = std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)>;
     SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, image.width, image.height),
                        &cairo_surface_destroy);
@@ -64,8 +70,13 @@ void writeRgbaPng(const RgbaImage& image, const std::filesystem::path& path) {
         }
     }
     cairo_surface_mark_dirty(surface.get());
-    writeFileAtomically(path, [&](const std::filesystem::path& temporary) {
-        if (auto st = cairo_surface_write_to_png(surface.get(), temporary.c_str());
+    destination.write("PNG", [&](std::ostream& out) {
+        auto write = [](void* closure, const unsigned char* bytes, unsigned int length) {
+            auto* stream = static_cast<std::ostream*>(closure);
+            stream->write(reinterpret_cast<const char*>(bytes), length);
+            return *stream ? CAIRO_STATUS_SUCCESS : CAIRO_STATUS_WRITE_ERROR;
+        };
+        if (auto st = cairo_surface_write_to_png_stream(surface.get(), write, &out);
             st != CAIRO_STATUS_SUCCESS)
             throw fileError(path, std::string("cannot write PNG: ") + cairo_status_to_string(st));
     });

@@ -13,8 +13,8 @@
 #include <sstream>
 #include <string>
 
-#include "graftal/diagnostics.hpp"
-#include "graftal/framed_picture.hpp"
+#include "graftal/core/diagnostics.hpp"
+#include "graftal/output/framed_picture.hpp"
 
 namespace graftal {
 
@@ -184,8 +184,9 @@ void checkCamera(const Camera& c) {
                           " must be finite and not zero (--up, or `up vector:` in the view "
                           "file)");
     if (!(c.fieldOfView > 0 && c.fieldOfView < 180))
-        throw cameraError("the field of view must be between 0 and 180 degrees (--fov, or "
-                          "`field of view:` in the view file)");
+        throw cameraError(
+            "the field of view must be between 0 and 180 degrees (--fov, or "
+            "`field of view:` in the view file)");
 }
 
 Camera frameCamera(const Camera& c, const PointSource& points, int width, int height) {

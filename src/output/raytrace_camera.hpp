@@ -4,7 +4,7 @@
 
 #include <functional>
 
-#include "graftal/render3d.hpp"
+#include "graftal/output/render3d.hpp"
 #include "traced_scene.hpp"
 
 namespace graftal {

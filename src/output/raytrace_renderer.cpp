@@ -6,10 +6,10 @@
 #include <string>
 #include <system_error>
 
-#include "graftal/animation_file.hpp"
-#include "graftal/diagnostics.hpp"
-#include "graftal/output.hpp"
-#include "graftal/render3d.hpp"
+#include "graftal/core/diagnostics.hpp"
+#include "graftal/output/animation_file.hpp"
+#include "graftal/output/output.hpp"
+#include "graftal/output/render3d.hpp"
 #include "raytrace_camera.hpp"
 #include "raytrace_scene.hpp"
 #include "raytrace_shading.hpp"

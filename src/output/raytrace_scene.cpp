@@ -9,7 +9,7 @@
 #include <cmath>
 #include <limits>
 
-#include "graftal/diagnostics.hpp"
+#include "graftal/core/diagnostics.hpp"
 #include "raytrace_camera.hpp"
 
 namespace graftal {

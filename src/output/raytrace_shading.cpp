@@ -18,7 +18,7 @@
 #include <optional>
 #include <thread>
 
-#include "core/random_stream.hpp"
+#include "graftal/core/random_stream.hpp"
 
 namespace graftal {
 

@@ -1,10 +1,10 @@
 // The streamed PNG: the turtle walks a streamed derivation (or its subtree summaries)
 // twice, once to measure the picture and once to draw it into a StreamedPng.
-#include "graftal/streamed_picture.hpp"
+#include "graftal/output/streamed_picture.hpp"
 
 #include <algorithm>
 
-#include "graftal/streamed_interpretation.hpp"
+#include "graftal/turtle/streamed_interpretation.hpp"
 #include "summarised_png.hpp"
 
 namespace graftal {

@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "graftal/diagnostics.hpp"
-#include "graftal/output.hpp"
+#include "graftal/core/diagnostics.hpp"
+#include "graftal/output/output.hpp"
 
 namespace graftal {
 

@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "graftal/output.hpp"
-#include "graftal/scene.hpp"
+#include "graftal/geometry/scene.hpp"
+#include "graftal/output/output.hpp"
 
 namespace graftal {
 

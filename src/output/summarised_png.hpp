@@ -3,8 +3,8 @@
 
 #include <filesystem>
 
-#include "graftal/output.hpp"
-#include "turtle/subtree_summaries.hpp"
+#include "graftal/output/output.hpp"
+#include "graftal/turtle/subtree_summaries.hpp"
 
 namespace graftal {
 

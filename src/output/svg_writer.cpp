@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "graftal/diagnostics.hpp"
-#include "graftal/output.hpp"
+#include "graftal/core/diagnostics.hpp"
+#include "graftal/output/output.hpp"
 #include "stroke_order.hpp"
 
 namespace graftal {

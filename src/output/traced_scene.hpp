@@ -6,8 +6,8 @@
 #include <span>
 #include <vector>
 
-#include "graftal/mesh.hpp"
-#include "graftal/mesh_scene.hpp"
+#include "graftal/geometry/mesh.hpp"
+#include "graftal/geometry/mesh_scene.hpp"
 
 namespace graftal {
 

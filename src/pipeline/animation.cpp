@@ -1,27 +1,27 @@
 // animate(): a model's development as frames. Every step is derived once; the pictures of
 // all frames are made first (scenes for line art, meshes for ray tracing), so that the one
 // camera can be framed on all of them together, and then drawn in order.
-#include "graftal/animation.hpp"
+#include "graftal/pipeline/animation.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <future>
 #include <string>
 
-#include "core/parallel.hpp"
-#include "graftal/bspline.hpp"
-#include "graftal/color_map.hpp"
-#include "graftal/derivation.hpp"
-#include "graftal/derivation_diagram.hpp"
-#include "graftal/framed_picture.hpp"
-#include "graftal/material_file.hpp"
-#include "graftal/mesh.hpp"
-#include "graftal/projection.hpp"
-#include "graftal/render3d.hpp"
-#include "graftal/stages.hpp"
-#include "graftal/turtle.hpp"
-#include "pipeline/module_ages.hpp"
-#include "pipeline/render_settings.hpp"
+#include "graftal/core/parallel.hpp"
+#include "graftal/geometry/bspline.hpp"
+#include "graftal/geometry/color_map.hpp"
+#include "graftal/geometry/material_file.hpp"
+#include "graftal/geometry/mesh.hpp"
+#include "graftal/geometry/projection.hpp"
+#include "graftal/output/derivation_diagram.hpp"
+#include "graftal/output/framed_picture.hpp"
+#include "graftal/output/render3d.hpp"
+#include "graftal/pipeline/stages.hpp"
+#include "graftal/rewrite/derivation.hpp"
+#include "graftal/turtle/turtle.hpp"
+#include "module_ages.hpp"
+#include "render_settings.hpp"
 
 namespace graftal {
 

@@ -1,13 +1,13 @@
 // The export registry (export.hpp): one table of every format graftal writes, each row with
 // the one function that writes it to a destination.
-#include "graftal/export.hpp"
+#include "graftal/pipeline/export.hpp"
 
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
 
-#include "graftal/atomic_file.hpp"
-#include "graftal/output.hpp"
+#include "graftal/core/atomic_file.hpp"
+#include "graftal/output/output.hpp"
 
 namespace graftal {
 
@@ -21,10 +21,6 @@ Error requestError(const std::string& message, const char* field = nullptr) {
     return Error(std::move(d));
 }
 
-ExportResult fromRender(RenderResult r) {
-    return ExportResult{r.steps, r.route, std::move(r.notes), std::move(r.materials)};
-}
-
 template <FileFormat F>
 ExportResult writeRendered(const Model& model, const ExportRequest& request,
                            const Destination& destination) {
@@ -35,7 +31,7 @@ ExportResult writeRendered(const Model& model, const ExportRequest& request,
                         : fs::path("output" + std::string(fileFormatInfo(F).extension));
     // The checks that need no derivation (a view or a diagram asks for a picture).
     checkRenderRequest(render);
-    return fromRender(renderTo(model, render, F, destination));
+    return renderTo(model, render, F, destination);
 }
 
 // The frames go through the animation encoders, which write named files.
@@ -43,15 +39,14 @@ ExportResult writeAnimated(const Model& model, const ExportRequest& request,
                            const Destination& destination, std::string_view extension) {
     AnimationRequest animation = request;
     ExportResult result;
-    destination.writeThroughFile(
-        "animation", std::string(extension), [&](const fs::path& file) {
-            animation.output = file;
-            checkAnimationRequest(animation);
-            const AnimationResult a = writeAnimationFile(model, animation);
-            result.steps = a.to;
-            result.route = a.route;
-            result.notes = a.notes;
-        });
+    destination.writeThroughFile("animation", std::string(extension), [&](const fs::path& file) {
+        animation.output = file;
+        checkAnimationRequest(animation);
+        const AnimationResult a = writeAnimationFile(model, animation);
+        result.steps = a.to;
+        result.route = a.route;
+        result.notes = a.notes;
+    });
     return result;
 }
 
@@ -71,8 +66,9 @@ ExportResult writeAnimation(const Model& model, const ExportRequest& request,
 ExportResult writeFrames(const Model& model, const ExportRequest& request,
                          const Destination& destination) {
     if (destination.kind() != Destination::Kind::File)
-        throw requestError("a folder of PNG frames can only be written to a folder on disk; "
-                           "use .gif, .webp or .mp4");
+        throw requestError(
+            "a folder of PNG frames can only be written to a folder on disk; "
+            "use .gif, .webp or .mp4");
     AnimationRequest animation = request;
     animation.output = destination.path();
     checkAnimationRequest(animation);
@@ -105,9 +101,8 @@ ExportResult writeMusic(const Model& model, const ExportRequest& request,
                         const Destination& destination) {
     const Score score = scored(model, request);
     request.cancel.check();
-    destination.writeThroughFile("score", E.text, [&](const fs::path& file) {
-        writeScore(score, file, request.audio);
-    });
+    destination.writeThroughFile(
+        "score", E.text, [&](const fs::path& file) { writeScore(score, file, request.audio); });
     return ExportResult{requestedSteps(model, request), RenderRoute::LineArt, {}, {}};
 }
 
@@ -130,8 +125,7 @@ constexpr ExportFormat kFormats[] = {
      writeAnimation<".webp">},
     {"mp4", ".mp4", ExportKind::Animation, "H.264 video", true, false, false,
      writeAnimation<".mp4">},
-    {"frames", "", ExportKind::Animation, "a folder of PNG frames", true, true, false,
-     writeFrames},
+    {"frames", "", ExportKind::Animation, "a folder of PNG frames", true, true, false, writeFrames},
     {"mid", ".mid", ExportKind::Music, "Standard MIDI File", true, false, false,
      writeMusic<".mid">},
     {"wav", ".wav", ExportKind::Music, "audio played by FluidSynth", true, false, false,
@@ -180,7 +174,9 @@ const ExportFormat* findExportFormat(std::string_view nameOrExtension,
     if (key.empty()) return nullptr;
     const std::string dotted = key.front() == '.' ? key : "." + key;
     // Alternative spellings of a few extensions.
-    const std::string extension = dotted == ".midi" ? ".mid" : dotted == ".xml" ? ".musicxml" : dotted;
+    const std::string extension = dotted == ".midi"  ? ".mid"
+                                  : dotted == ".xml" ? ".musicxml"
+                                                     : dotted;
     for (const ExportFormat& f : kFormats)
         if ((!kind || f.kind == *kind) && (f.name == key || f.extension == extension)) return &f;
     return nullptr;
@@ -191,7 +187,8 @@ std::string exportFormatList(std::optional<ExportKind> kind, std::string_view se
     std::vector<std::string> names;
     for (const ExportFormat& f : kFormats)
         if (!kind || f.kind == *kind)
-            names.push_back(f.extension.empty() ? std::string("a folder") : std::string(f.extension));
+            names.push_back(f.extension.empty() ? std::string("a folder")
+                                                : std::string(f.extension));
     std::string list;
     for (std::size_t i = 0; i < names.size(); ++i) {
         if (i > 0) list += i + 1 == names.size() ? last : separator;
@@ -204,9 +201,9 @@ const ExportFormat& exportFormatFor(const ExportRequest& request, const Destinat
                                     std::optional<ExportKind> kind) {
     if (!request.format.empty()) {
         if (const ExportFormat* f = findExportFormat(request.format, kind)) return *f;
-        throw requestError("unknown format '" + request.format + "' (use " +
-                               exportFormatList(kind) + ")",
-                           "format");
+        throw requestError(
+            "unknown format '" + request.format + "' (use " + exportFormatList(kind) + ")",
+            "format");
     }
     const fs::path& path = destination.path();
     const std::string extension = path.extension().string();
@@ -216,9 +213,8 @@ const ExportFormat& exportFormatFor(const ExportRequest& request, const Destinat
         if (const ExportFormat* f = findExportFormat("frames", kind)) return *f;
     if (!extension.empty())
         if (const ExportFormat* f = findExportFormat(extension, kind)) return *f;
-    throw requestError(path.string() + ": unknown " +
-                           std::string(kind ? kindName(*kind) : "file") + " format (use " +
-                           exportFormatList(kind) + ")",
+    throw requestError(path.string() + ": unknown " + std::string(kind ? kindName(*kind) : "file") +
+                           " format (use " + exportFormatList(kind) + ")",
                        "format");
 }
 
@@ -238,9 +234,10 @@ ExportResult exportMap(const MapLSystem& system, const Destination& destination,
                            exportFormatList(ExportKind::Picture) + "), not as " +
                            std::string(format.description));
     if (request.view || request.derivationDiagram)
-        throw requestError("a view direction or a derivation diagram does not apply to a map "
-                           "L-system",
-                           request.view ? "view" : "derivationDiagram");
+        throw requestError(
+            "a view direction or a derivation diagram does not apply to a map "
+            "L-system",
+            request.view ? "view" : "derivationDiagram");
     const DerivedMap map = derivedMap(system, request.steps, request.map, request.cancel);
     request.cancel.check();
     Scene scene = drawnMap(map, request.map);

@@ -4,7 +4,7 @@
 #include <optional>
 #include <string_view>
 
-#include "graftal/pipeline.hpp"
+#include "graftal/pipeline/pipeline.hpp"
 
 namespace graftal {
 

@@ -1,5 +1,5 @@
 // Fractional ages between derivation steps (see module_ages.hpp).
-#include "pipeline/module_ages.hpp"
+#include "module_ages.hpp"
 
 #include <array>
 #include <cstdint>

@@ -5,9 +5,9 @@
 
 #include <vector>
 
-#include "graftal/lsystem.hpp"
-#include "graftal/model.hpp"
-#include "graftal/module_string.hpp"
+#include "graftal/core/module_string.hpp"
+#include "graftal/lang/lsystem.hpp"
+#include "graftal/lang/model.hpp"
 
 namespace graftal {
 

@@ -4,23 +4,24 @@
 #include <cmath>
 #include <filesystem>
 
-#include "graftal/bspline.hpp"
-#include "graftal/color_map.hpp"
-#include "graftal/derivation_diagram.hpp"
-#include "graftal/file_format.hpp"
-#include "graftal/framed_picture.hpp"
-#include "graftal/kolam.hpp"
-#include "graftal/material_file.hpp"
-#include "graftal/mesh.hpp"
-#include "graftal/mesh_scene.hpp"
-#include "graftal/export.hpp"
-#include "graftal/pipeline.hpp"
-#include "graftal/stages.hpp"
-#include "graftal/render3d.hpp"
-#include "graftal/streamed_picture.hpp"
-#include "graftal/surface.hpp"
-#include "graftal/turtle.hpp"
-#include "pipeline/render_settings.hpp"
+#include "graftal/core/file_format.hpp"
+#include "graftal/geometry/bspline.hpp"
+#include "graftal/geometry/color_map.hpp"
+#include "graftal/geometry/kolam.hpp"
+#include "graftal/geometry/material_file.hpp"
+#include "graftal/geometry/mesh.hpp"
+#include "graftal/geometry/mesh_scene.hpp"
+#include "graftal/geometry/surface.hpp"
+#include "graftal/output/animation_file.hpp"
+#include "graftal/output/derivation_diagram.hpp"
+#include "graftal/output/framed_picture.hpp"
+#include "graftal/output/render3d.hpp"
+#include "graftal/output/streamed_picture.hpp"
+#include "graftal/pipeline/export.hpp"
+#include "graftal/pipeline/pipeline.hpp"
+#include "graftal/pipeline/stages.hpp"
+#include "graftal/turtle/turtle.hpp"
+#include "render_settings.hpp"
 
 namespace graftal {
 
@@ -146,11 +147,10 @@ void renderDerivation(const Model& model, int steps, const RenderRequest& reques
         render.background = *model.view.camera.background;
     request.cancel.check();
     const std::string extension = destination.path().extension().string();
-    destination.writeThroughFile("picture", extension.empty() ? ".svg" : extension,
-                                 [&](const std::filesystem::path& file) {
-                                     writeDerivationDiagram(strings, model.lsystem.symbols,
-                                                            render, file);
-                                 });
+    destination.writeThroughFile(
+        "picture", extension.empty() ? ".svg" : extension, [&](const std::filesystem::path& file) {
+            writeDerivationDiagram(strings, model.lsystem.symbols, render, file);
+        });
 }
 
 // True when the string holds a label, @L: the module L right after an @.
@@ -199,13 +199,6 @@ std::vector<std::string> glbSettingsGiven(const RenderRequest& request) {
     if (request.glb.instancing != defaults.instancing) given.push_back("glbInstancing");
     if (request.glb.compression != defaults.compression) given.push_back("glbCompression");
     return given;
-}
-
-void warnAt(RenderResult& result, const RenderRequest& request, SourceLocation where,
-            std::string message) {
-    Diagnostic d{Severity::Warning, std::move(where), std::move(message)};
-    if (request.notify) request.notify(d);
-    result.notes.push_back(std::move(d));
 }
 
 // Settings the route taken does not use are said, not silently dropped.
@@ -284,8 +277,9 @@ RenderResult renderTo(const Model& model, const RenderRequest& request, FileForm
         // A picture with many strokes per pixel is drawn from its subtree summaries even when
         // its string would fit: its time then grows with the image, not with the string.
         // (The streamed picture has neither colour maps nor splines.)
-        const bool plainLines = model.view.materials.colorMap.empty() && !drawsSplines(model, request) &&
-                                !request.kolamDots && !model.view.kolam.dots;
+        const bool plainLines = model.view.materials.colorMap.empty() &&
+                                !drawsSplines(model, request) && !request.kolamDots &&
+                                !model.view.kolam.dots;
         if ((pixelBound && plainLines) ||
             shouldStream(model, steps, request, png2D, true, pixelBound, result.notes)) {
             warnLineArtIgnores(result, request, model, false);
@@ -342,9 +336,9 @@ RenderResult renderTo(const Model& model, const RenderRequest& request, FileForm
         warnIgnored(result, request, model,
                     "instancing and compression settings apply to .glb files only; ignored",
                     glbSettingsGiven(request));
-    MeshSetup setup =
-        meshSetup(model, request, picture ? MeshPurpose::Picture : MeshPurpose::File);
-    if (picture) setPictureRadii(setup.options, scene.bounds(), raytraceOptions(model.view, request));
+    MeshSetup setup = meshSetup(model, request, picture ? MeshPurpose::Picture : MeshPurpose::File);
+    if (picture)
+        setPictureRadii(setup.options, scene.bounds(), raytraceOptions(model.view, request));
     std::vector<Diagnostic> meshNotes;
     const MeshScene mesh = meshed(model, std::move(scene), setup, meshNotes);
     for (Diagnostic& d : meshNotes) {
@@ -361,9 +355,9 @@ RenderResult renderTo(const Model& model, const RenderRequest& request, FileForm
             mtlName.replace_extension(".mtl");
             if (destination.kind() == Destination::Kind::File) {
                 if (mtlName == destination.path())
-                    throw fileError(destination.path(),
-                                    "cannot write OBJ: the materials go to '" + mtlName.string() +
-                                        "'; use the extension .obj");
+                    throw fileError(destination.path(), "cannot write OBJ: the materials go to '" +
+                                                            mtlName.string() +
+                                                            "'; use the extension .obj");
                 writeObj(mesh, destination, Destination::file(mtlName));
             } else {
                 writeObj(mesh, destination, Destination::memory(result.materials, mtlName));
@@ -380,9 +374,15 @@ RenderResult renderTo(const Model& model, const RenderRequest& request, FileForm
         case FileFormat::Svg:
         case FileFormat::Pdf:
             // Only a 3D scene drawn as a PNG gets here: it is ray traced.
-            destination.writeThroughFile("PNG", ".png", [&](const std::filesystem::path& file) {
-                renderRaytraced(mesh, raytraceOptions(model.view, request), file);
-            });
+            if (destination.kind() == Destination::Kind::File) {
+                // A file's folder is checked before the tracing.
+                renderRaytraced(mesh, raytraceOptions(model.view, request), destination.path());
+            } else {
+                const RaytraceOptions options = raytraceOptions(model.view, request);
+                writeRgbaPng(RgbaImage::fromRgb(renderRaytracedPixels(mesh, options), options.width,
+                                                options.height),
+                             destination);
+            }
             result.route = RenderRoute::RayTraced;
             break;
     }
@@ -393,8 +393,7 @@ RenderResult render(const Model& model, const RenderRequest& request) {
     checkRenderRequest(request);
     ExportRequest exportRequest;
     static_cast<RenderRequest&>(exportRequest) = request;
-    const ExportResult exported = exportModel(model, Destination::file(request.output), exportRequest);
-    return RenderResult{exported.steps, exported.route, exported.notes, exported.materials};
+    return exportModel(model, Destination::file(request.output), exportRequest);
 }
 
 }  // namespace graftal

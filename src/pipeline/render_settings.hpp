@@ -4,10 +4,10 @@
 
 #include <filesystem>
 
-#include "graftal/model.hpp"
-#include "graftal/pipeline.hpp"
-#include "graftal/render3d.hpp"
-#include "graftal/surface.hpp"
+#include "graftal/geometry/surface.hpp"
+#include "graftal/lang/model.hpp"
+#include "graftal/output/render3d.hpp"
+#include "graftal/pipeline/pipeline.hpp"
 
 namespace graftal {
 

@@ -1,17 +1,17 @@
 // The pipeline's stages (stages.hpp): derive, draw, mesh. Every picture, file, animation
 // frame and studio view is made through these, so a model looks the same in each.
-#include "graftal/stages.hpp"
+#include "graftal/pipeline/stages.hpp"
 
 #include <algorithm>
 #include <filesystem>
 
-#include "graftal/bspline.hpp"
-#include "graftal/color_map.hpp"
-#include "graftal/derivation.hpp"
-#include "graftal/kolam.hpp"
-#include "graftal/material_file.hpp"
-#include "graftal/turtle.hpp"
-#include "pipeline/render_settings.hpp"
+#include "graftal/geometry/bspline.hpp"
+#include "graftal/geometry/color_map.hpp"
+#include "graftal/geometry/kolam.hpp"
+#include "graftal/geometry/material_file.hpp"
+#include "graftal/rewrite/derivation.hpp"
+#include "graftal/turtle/turtle.hpp"
+#include "render_settings.hpp"
 
 namespace graftal {
 
@@ -167,14 +167,9 @@ RaytraceOptions cameraFor(const Model& model, const RenderRequest& request) {
     return raytraceOptions(model.view, request);
 }
 
-DerivedMap derivedMap(const MapLSystem& system, std::optional<int> steps,
-                      const MapRequest& request, const CancellationToken& cancel) {
-    const int n = steps.value_or(system.derivationLength);
-    if (n < 0)
-        throw Error(Diagnostic{Severity::Error, SourceLocation{system.file, 0, 0},
-                               "the derivation length must be 0 or more, not " +
-                                   std::to_string(n),
-                               {"steps"}});
+DerivedMap derivedMap(const MapLSystem& system, std::optional<int> steps, const MapRequest& request,
+                      const CancellationToken& cancel) {
+    const int n = checkedSteps(steps.value_or(system.derivationLength), std::nullopt, system.file);
     DerivedMap d;
     d.map = deriveMap(system, n, request.derivation, [&](const PlaneMap&, const MapStepReport& r) {
         d.last = r;

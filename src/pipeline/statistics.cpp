@@ -1,10 +1,10 @@
 // measured(): the statistics of a derivation (statistics.hpp), by the cheapest road that
 // gives them exactly.
-#include "graftal/statistics.hpp"
+#include "graftal/pipeline/statistics.hpp"
 
-#include "graftal/derivation.hpp"
-#include "graftal/stages.hpp"
-#include "graftal/streamed_interpretation.hpp"
+#include "graftal/pipeline/stages.hpp"
+#include "graftal/rewrite/derivation.hpp"
+#include "graftal/turtle/streamed_interpretation.hpp"
 
 namespace graftal {
 

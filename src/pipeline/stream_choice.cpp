@@ -4,30 +4,34 @@
 
 #include <cmath>
 
-#include "graftal/growth.hpp"
-#include "graftal/pipeline.hpp"
-#include "graftal/streaming.hpp"
-#include "graftal/turtle.hpp"
+#include "graftal/pipeline/pipeline.hpp"
+#include "graftal/rewrite/growth.hpp"
+#include "graftal/rewrite/streaming.hpp"
+#include "graftal/turtle/turtle.hpp"
 
 namespace graftal {
 
-int requestedSteps(const Model& model, const DeriveRequest& request) {
-    if (request.steps && *request.steps < 0) {
-        Diagnostic d{Severity::Error, SourceLocation{"graftal", 0, 0},
-                     "a derivation length of " + std::to_string(*request.steps) +
-                         " steps: it must be 0 or more"};
+int checkedSteps(int steps, std::optional<int> maxSteps, const std::string& file) {
+    if (steps < 0) {
+        Diagnostic d{
+            Severity::Error, SourceLocation{"graftal", 0, 0},
+            "a derivation length of " + std::to_string(steps) + " steps: it must be 0 or more"};
         d.fields = {"steps"};
         throw Error(std::move(d));
     }
-    const int steps = request.steps.value_or(model.lsystem.derivationLength);
-    if (request.maxSteps && steps > *request.maxSteps) {
-        Diagnostic d{Severity::Error, SourceLocation{model.lsystem.file, 0, 0},
+    if (maxSteps && steps > *maxSteps) {
+        Diagnostic d{Severity::Error, SourceLocation{file, 0, 0},
                      "derivation length " + std::to_string(steps) + " is over the limit of " +
-                         std::to_string(*request.maxSteps) + " steps"};
+                         std::to_string(*maxSteps) + " steps"};
         d.fields = {"steps"};
         throw Error(std::move(d));
     }
     return steps;
+}
+
+int requestedSteps(const Model& model, const DeriveRequest& request) {
+    return checkedSteps(request.steps.value_or(model.lsystem.derivationLength), request.maxSteps,
+                        model.lsystem.file);
 }
 
 DerivationOptions derivationOptions(const Model& model, const DeriveRequest& request) {

@@ -6,7 +6,7 @@
 #include <span>
 #include <vector>
 
-#include "graftal/module_string.hpp"
+#include "graftal/core/module_string.hpp"
 
 namespace graftal {
 

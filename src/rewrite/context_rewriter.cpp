@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cstring>
 
-#include "core/parallel.hpp"
-#include "core/random_stream.hpp"
+#include "graftal/core/parallel.hpp"
+#include "graftal/core/random_stream.hpp"
 
 namespace graftal {
 

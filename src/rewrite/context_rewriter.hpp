@@ -9,8 +9,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "graftal/lsystem.hpp"
-#include "graftal/module_string.hpp"
+#include "graftal/core/module_string.hpp"
+#include "graftal/lang/lsystem.hpp"
 
 namespace graftal {
 

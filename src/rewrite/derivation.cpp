@@ -1,10 +1,10 @@
 // A derivation step in full: cut branches, rewrite with the step's table, decompose,
 // then let query modules and the environment see the new string.
-#include "graftal/derivation.hpp"
+#include "graftal/rewrite/derivation.hpp"
 
 #include <cmath>
 
-#include "core/parallel.hpp"
+#include "graftal/core/parallel.hpp"
 #include "output_files.hpp"
 #include "rewriting_engine.hpp"
 

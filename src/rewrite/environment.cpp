@@ -1,13 +1,13 @@
 // The environment factory: reads an L-system's `environment:` lines and builds the
 // environment they name. Also the small environments that need no file of their own.
-#include "graftal/environment.hpp"
+#include "graftal/rewrite/environment.hpp"
 
 #include <cctype>
 #include <cmath>
 
 #include "environment_detail.hpp"
-#include "graftal/expression.hpp"
-#include "graftal/lsystem.hpp"
+#include "graftal/lang/expression.hpp"
+#include "graftal/lang/lsystem.hpp"
 
 namespace graftal {
 

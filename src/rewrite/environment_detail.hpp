@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "graftal/environment.hpp"
-#include "graftal/lsystem.hpp"
+#include "graftal/lang/lsystem.hpp"
+#include "graftal/rewrite/environment.hpp"
 
 namespace graftal::environment_detail {
 

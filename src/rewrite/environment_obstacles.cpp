@@ -6,8 +6,8 @@
 #include <limits>
 
 #include "environment_detail.hpp"
-#include "graftal/environment.hpp"
-#include "graftal/lsystem.hpp"
+#include "graftal/lang/lsystem.hpp"
+#include "graftal/rewrite/environment.hpp"
 
 namespace graftal {
 

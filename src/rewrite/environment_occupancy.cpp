@@ -9,8 +9,8 @@
 #include <unordered_map>
 
 #include "environment_detail.hpp"
-#include "graftal/environment.hpp"
-#include "graftal/lsystem.hpp"
+#include "graftal/lang/lsystem.hpp"
+#include "graftal/rewrite/environment.hpp"
 
 namespace graftal {
 

@@ -18,8 +18,8 @@
 #include <thread>
 
 #include "environment_detail.hpp"
-#include "graftal/environment.hpp"
-#include "graftal/lsystem.hpp"
+#include "graftal/lang/lsystem.hpp"
+#include "graftal/rewrite/environment.hpp"
 
 namespace graftal {
 

@@ -1,6 +1,6 @@
 // Module counts from the production matrix M (M[s][t] = how many t a successor of s holds):
 // the count vector of step k+1 is the count vector of step k times M.
-#include "graftal/growth.hpp"
+#include "graftal/rewrite/growth.hpp"
 
 #include <algorithm>
 #include <cstdio>

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "graftal/module_string.hpp"
+#include "graftal/core/module_string.hpp"
 
 namespace graftal {
 

@@ -7,7 +7,7 @@
 #include <memory>
 #include <vector>
 
-#include "graftal/expression.hpp"
+#include "graftal/lang/expression.hpp"
 
 namespace graftal {
 

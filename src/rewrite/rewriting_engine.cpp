@@ -7,8 +7,8 @@
 #include <numeric>
 #include <type_traits>
 
-#include "core/parallel.hpp"
-#include "core/random_stream.hpp"
+#include "graftal/core/parallel.hpp"
+#include "graftal/core/random_stream.hpp"
 #include "rewriting_engine_detail.hpp"
 
 namespace graftal {
@@ -186,7 +186,6 @@ bool RewritingEngine::step(const ModuleString& cur, ModuleString& next, int step
     }
     return stepGeneric(cur, next, stepNumber, table, memoryLimit, activeIn, activeOut);
 }
-
 
 void RewritingEngine::prepareOutput(const ModuleString& cur, ModuleString& next,
                                     std::size_t modules, std::size_t params, bool parametric,

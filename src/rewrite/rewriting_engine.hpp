@@ -12,8 +12,8 @@
 
 #include "bracket_index.hpp"
 #include "context_rewriter.hpp"
-#include "graftal/lsystem.hpp"
-#include "graftal/module_string.hpp"
+#include "graftal/core/module_string.hpp"
+#include "graftal/lang/lsystem.hpp"
 
 namespace graftal {
 

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "core/random_stream.hpp"
+#include "graftal/core/random_stream.hpp"
 #include "rewriting_engine.hpp"
 
 namespace graftal {

@@ -7,7 +7,7 @@
 #include <numeric>
 #include <type_traits>
 
-#include "core/parallel.hpp"
+#include "graftal/core/parallel.hpp"
 #include "rewriting_engine.hpp"
 #include "rewriting_engine_detail.hpp"
 
@@ -262,6 +262,5 @@ bool RewritingEngine::countStep(const ModuleString& cur, std::vector<std::uint64
         for (std::size_t k = 0; k < symbolCount; ++k) counts[k] += t[k];
     return true;
 }
-
 
 }  // namespace graftal

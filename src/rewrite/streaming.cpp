@@ -3,9 +3,9 @@
 // O(depth × successor length). Visiting level k in depth-first order meets the modules
 // of string k from left to right, so each module's position in its string is a running
 // counter per level, and the counter-based random stream gives the materialised choices.
-#include "graftal/streaming.hpp"
+#include "graftal/rewrite/streaming.hpp"
 
-#include "core/parallel.hpp"
+#include "graftal/core/parallel.hpp"
 #include "rewriting_engine.hpp"
 
 namespace graftal {

@@ -1,14 +1,14 @@
 // The line buffer, from a Scene or straight from the turtle's polylines: both fill the
 // same quantized polylines, and one writer lays out the bytes.
-#include "studio/line_buffer.hpp"
+#include "graftal/studio/line_buffer.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
 
-#include "graftal/mesh.hpp"
-#include "graftal/output.hpp"
+#include "graftal/geometry/mesh.hpp"
+#include "graftal/output/output.hpp"
 
 namespace graftal::studio {
 

@@ -1,5 +1,5 @@
 // The studio's guards (studio_guard.hpp).
-#include "studio/studio_guard.hpp"
+#include "graftal/studio/studio_guard.hpp"
 
 #include <algorithm>
 #include <cmath>

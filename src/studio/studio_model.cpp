@@ -1,7 +1,7 @@
 // The studio's computations, each through the pipeline's stages (stages.hpp) and its
 // export registry (export.hpp): the studio turns a page's request into the pipeline's
 // request and the result into bytes for the page, and assembles nothing of its own.
-#include "studio/studio_model.hpp"
+#include "graftal/studio/studio_model.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -14,17 +14,17 @@
 #include <mutex>
 #include <sstream>
 
-#include "graftal/destination.hpp"
-#include "graftal/export.hpp"
-#include "graftal/map_lsystem.hpp"
-#include "graftal/output.hpp"
-#include "graftal/pipeline.hpp"
-#include "graftal/polyline_scene.hpp"
-#include "graftal/projection.hpp"
-#include "graftal/stages.hpp"
-#include "graftal/streamed_picture.hpp"
-#include "lang/source_text.hpp"
-#include "studio/zip_archive.hpp"
+#include "graftal/core/destination.hpp"
+#include "graftal/geometry/projection.hpp"
+#include "graftal/lang/source_text.hpp"
+#include "graftal/maps/map_lsystem.hpp"
+#include "graftal/output/output.hpp"
+#include "graftal/output/streamed_picture.hpp"
+#include "graftal/pipeline/export.hpp"
+#include "graftal/pipeline/pipeline.hpp"
+#include "graftal/pipeline/stages.hpp"
+#include "graftal/studio/zip_archive.hpp"
+#include "graftal/turtle/polyline_scene.hpp"
 
 namespace graftal::studio {
 
@@ -402,8 +402,8 @@ std::string thumbnailPng(const fs::path& file, const fs::path& viewFile, int siz
     options.viewFile = viewFile.string();
     ParseResult parsed = loadModel(file, options);
     if (!parsed.ok()) throw Error(parsed.errors());
-    ExportRequest request =
-        pipelineRequest(ModelInput{{}, file, std::nullopt, {}, {}, {}}, limits, CancellationToken{});
+    ExportRequest request = pipelineRequest(ModelInput{{}, file, std::nullopt, {}, {}, {}}, limits,
+                                            CancellationToken{});
     request.format = "png";
     request.picture.width = request.picture.height = size;
     request.samplesPerPixel = 1;

@@ -1,6 +1,6 @@
 // Path checks for the studio: a browser page names files by relative paths, and the
 // server must never read or write outside the folder it was started on.
-#include "studio/studio_root.hpp"
+#include "graftal/studio/studio_root.hpp"
 
 #include <algorithm>
 #include <system_error>

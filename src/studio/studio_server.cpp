@@ -1,6 +1,6 @@
 // The studio's routes. Handlers run on httplib's thread pool; each turns the library's
 // errors into JSON (with line:column) so that no model can take the server down.
-#include "studio/studio_server.hpp"
+#include "graftal/studio/studio_server.hpp"
 
 #include <httplib.h>
 #include <unistd.h>
@@ -11,17 +11,17 @@
 #include <charconv>
 #include <chrono>
 #include <cstring>
-#include <limits>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <sstream>
 #include <thread>
 
-#include "graftal/atomic_file.hpp"
-#include "graftal/file_format.hpp"
-#include "studio/studio_guard.hpp"
-#include "studio/studio_sessions.hpp"
+#include "graftal/core/atomic_file.hpp"
+#include "graftal/core/file_format.hpp"
+#include "graftal/studio/studio_guard.hpp"
+#include "graftal/studio/studio_sessions.hpp"
 
 namespace graftal::studio {
 
@@ -185,8 +185,8 @@ struct StudioServer::Impl {
         // Never narrowed: a number past an int is refused here, one past the studio's
         // limit by the derivation (with the limit in its message).
         if (body.contains("steps") && !body["steps"].is_null())
-            input.steps = static_cast<int>(
-                integerField(body, "steps", 0, std::numeric_limits<int>::max()));
+            input.steps =
+                static_cast<int>(integerField(body, "steps", 0, std::numeric_limits<int>::max()));
         if (body.contains("defines") && body["defines"].is_object()) {
             if (body["defines"].size() > 200) throw BadRequest("too many defines");
             for (const auto& [name, value] : body["defines"].items()) {
@@ -255,8 +255,7 @@ struct StudioServer::Impl {
         if (options.token.empty()) return true;
         return sameSecret(req.get_param_value("token"), options.token) ||
                sameSecret(req.get_header_value("X-Graftal-Token"), options.token) ||
-               sameSecret(cookieValue(req.get_header_value("Cookie"), cookieName()),
-                          options.token);
+               sameSecret(cookieValue(req.get_header_value("Cookie"), cookieName()), options.token);
     }
 
     // Refuses what a studio should not answer before its body is read: another host (DNS
@@ -279,7 +278,8 @@ struct StudioServer::Impl {
         if (!asset && !authorised(req)) {
             sendError(res, 403,
                       "this studio needs its token: open the address `graftal studio` printed "
-                      "(http://127.0.0.1" + p + "/?token=...)");
+                      "(http://127.0.0.1" +
+                          p + "/?token=...)");
             return true;
         }
         std::string encoding = req.get_header_value("Transfer-Encoding");
@@ -363,8 +363,10 @@ struct StudioServer::Impl {
                     const auto [end, ec] =
                         std::from_chars(text.data(), text.data() + text.size(), since);
                     if (ec != std::errc() || end != text.data() + text.size())
-                        throw BadRequest("\"since\" must be a file time in microseconds (a "
-                                         "whole number), got '" + text.substr(0, 40) + "'");
+                        throw BadRequest(
+                            "\"since\" must be a file time in microseconds (a "
+                            "whole number), got '" +
+                            text.substr(0, 40) + "'");
                 }
                 const auto until = std::chrono::steady_clock::now() +
                                    std::chrono::milliseconds(options.watchMilliseconds);
@@ -415,8 +417,8 @@ struct StudioServer::Impl {
                     StudioLimits limits = options.limits;
                     const DerivationGate::Pass pass = enterGate(token, limits);
                     try {
-                        picture = std::make_shared<StudioPicture>(derivePicture(
-                            input, std::move(parsed.model), limits, token, scratch));
+                        picture = std::make_shared<StudioPicture>(
+                            derivePicture(input, std::move(parsed.model), limits, token, scratch));
                     } catch (const Cancelled&) {
                         throw;
                     } catch (const Error& e) {  // the turtle's, the limits': with the report
@@ -524,8 +526,7 @@ struct StudioServer::Impl {
                            limits.memoryLimit =
                                std::min<std::size_t>(limits.memoryLimit, std::size_t(256) << 20);
                            limits.deriveSeconds = 20;
-                           const DerivationGate::Pass pass =
-                               enterGate(CancellationToken{}, limits);
+                           const DerivationGate::Pass pass = enterGate(CancellationToken{}, limits);
                            thumbnails[rel] = {
                                mtime, thumbnailPng(path, viewFileOf(path), 160, limits, scratch)};
                            it = thumbnails.find(rel);

@@ -1,7 +1,7 @@
 // The ZIP format's stored entries (APPNOTE 4.3: local headers, the data, the central
 // directory, its end record), little-endian, no compression, no ZIP64 (the studio's exports
 // stay far below 4 GiB).
-#include "studio/zip_archive.hpp"
+#include "graftal/studio/zip_archive.hpp"
 
 #include <array>
 #include <cstdint>

@@ -22,9 +22,9 @@
 #include <utility>
 #include <vector>
 
-#include "graftal/contour.hpp"
-#include "graftal/generalized_cylinder.hpp"
-#include "graftal/module_string.hpp"
+#include "graftal/core/module_string.hpp"
+#include "graftal/geometry/contour_points.hpp"
+#include "graftal/geometry/generalized_cylinder.hpp"
 
 namespace graftal::turtle {
 

@@ -14,10 +14,10 @@
 
 #include <optional>
 
-#include "graftal/lsystem.hpp"
-#include "graftal/model.hpp"
-#include "graftal/module_string.hpp"
-#include "graftal/streamed_interpretation.hpp"
+#include "graftal/core/module_string.hpp"
+#include "graftal/lang/lsystem.hpp"
+#include "graftal/lang/model.hpp"
+#include "graftal/turtle/streamed_interpretation.hpp"
 
 namespace graftal::turtle {
 

@@ -1,8 +1,8 @@
 // The turtle writing polylines (polyline_scene.hpp): a sink that keeps a point per segment
 // and a run per change of width or colour, and everything that is not a segment in a Scene.
-#include "graftal/polyline_scene.hpp"
+#include "graftal/turtle/polyline_scene.hpp"
 
-#include "core/huge_pages.hpp"
+#include "graftal/core/huge_pages.hpp"
 #include "planar_length.hpp"
 #include "turtle_machine.hpp"
 

@@ -1,7 +1,7 @@
 // The turtle fed by a streamed derivation: geometry for strings too large to hold.
-#include "graftal/streamed_interpretation.hpp"
+#include "graftal/turtle/streamed_interpretation.hpp"
 
-#include "graftal/streaming.hpp"
+#include "graftal/rewrite/streaming.hpp"
 #include "planar_measure.hpp"
 #include "streamed_sinks.hpp"
 #include "turtle_machine.hpp"

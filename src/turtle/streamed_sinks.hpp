@@ -9,7 +9,7 @@
 #include <span>
 #include <string>
 
-#include "graftal/streamed_interpretation.hpp"
+#include "graftal/turtle/streamed_interpretation.hpp"
 #include "planar_length.hpp"
 
 namespace graftal {
@@ -66,7 +66,8 @@ class DrawingSink {
     // Seen from the front, as projectScene() draws them.
     void disc(const Disc& d) { drawing_.polygon(discOutline(d, kSides), d.color); }
     void sphere(const Sphere& s) {
-        drawing_.polygon(discOutline(Disc{s.centre, {0, 0, 1}, s.radius, s.color}, kSides), s.color);
+        drawing_.polygon(discOutline(Disc{s.centre, {0, 0, 1}, s.radius, s.color}, kSides),
+                         s.color);
     }
     void baseWidth(float) {}
     void finish(bool) {}

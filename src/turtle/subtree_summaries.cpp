@@ -1,4 +1,4 @@
-#include "subtree_summaries.hpp"
+#include "graftal/turtle/subtree_summaries.hpp"
 
 #include <algorithm>
 #include <cmath>

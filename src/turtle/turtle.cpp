@@ -1,7 +1,7 @@
 // Turtle interpretation of a whole module string (see turtle_machine.hpp).
-#include "graftal/turtle.hpp"
+#include "graftal/turtle/turtle.hpp"
 
-#include "core/huge_pages.hpp"
+#include "graftal/core/huge_pages.hpp"
 #include "turtle_machine.hpp"
 
 namespace graftal {

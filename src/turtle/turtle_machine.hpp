@@ -21,10 +21,10 @@
 #include <vector>
 
 #include "generalized_cylinder_track.hpp"
-#include "graftal/lsystem.hpp"
-#include "graftal/model.hpp"
-#include "graftal/scene.hpp"
-#include "graftal/vec3.hpp"
+#include "graftal/core/vec3.hpp"
+#include "graftal/geometry/scene.hpp"
+#include "graftal/lang/lsystem.hpp"
+#include "graftal/lang/model.hpp"
 
 namespace graftal::turtle {
 
