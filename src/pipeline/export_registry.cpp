@@ -21,25 +21,26 @@ Error requestError(const std::string& message, const char* field = nullptr) {
     return Error(std::move(d));
 }
 
-template <FileFormat F>
-ExportResult writeRendered(const Model& model, const ExportRequest& request,
-                           const Destination& destination) {
+// Pictures and 3D files: render()'s writer, the format named by the row's extension.
+ExportResult writeRendered(const ExportFormat& format, const Model& model,
+                           const ExportRequest& request, const Destination& destination) {
     RenderRequest render = request;
     // The checks read the format from the output's name; a stream or memory may have none.
     render.output = destination.kind() == Destination::Kind::File
                         ? destination.path()
-                        : fs::path("output" + std::string(fileFormatInfo(F).extension));
+                        : fs::path("output" + std::string(format.extension));
     // The checks that need no derivation (a view or a diagram asks for a picture).
     checkRenderRequest(render);
-    return renderTo(model, render, F, destination);
+    return renderTo(model, render, *fileFormatFor(render.output), destination);
 }
 
 // The frames go through the animation encoders, which write named files.
-ExportResult writeAnimated(const Model& model, const ExportRequest& request,
-                           const Destination& destination, std::string_view extension) {
+ExportResult writeAnimation(const ExportFormat& format, const Model& model,
+                            const ExportRequest& request, const Destination& destination) {
     AnimationRequest animation = request;
     ExportResult result;
-    destination.writeThroughFile("animation", std::string(extension), [&](const fs::path& file) {
+    const std::string extension(format.extension);
+    destination.writeThroughFile("animation", extension, [&](const fs::path& file) {
         animation.output = file;
         checkAnimationRequest(animation);
         const AnimationResult a = writeAnimationFile(model, animation);
@@ -50,20 +51,8 @@ ExportResult writeAnimated(const Model& model, const ExportRequest& request,
     return result;
 }
 
-template <std::size_t N>
-struct Extension {
-    char text[N];
-    constexpr Extension(const char (&s)[N]) { std::copy_n(s, N, text); }
-};
-
-template <Extension E>
-ExportResult writeAnimation(const Model& model, const ExportRequest& request,
-                            const Destination& destination) {
-    return writeAnimated(model, request, destination, E.text);
-}
-
 // A folder of PNG frames: only a folder on disk can hold it.
-ExportResult writeFrames(const Model& model, const ExportRequest& request,
+ExportResult writeFrames(const ExportFormat&, const Model& model, const ExportRequest& request,
                          const Destination& destination) {
     if (destination.kind() != Destination::Kind::File)
         throw requestError(
@@ -76,69 +65,47 @@ ExportResult writeFrames(const Model& model, const ExportRequest& request,
     return ExportResult{a.to, a.route, a.notes, {}};
 }
 
-// The curve the turtle draws, read as a score (LSFP ch. 6.3).
-Score scored(const Model& model, const ExportRequest& request) {
-    RenderRequest draw = request;
-    draw.spline = 0;  // the notes are the turtle's own segments
-    draw.kolamDots = false;
-    Derived d = derived(model, request);
-    const Scene scene = drawn(model, shownString(model, d, request), draw);
-    if (scene.is3D)
-        throw Error(SourceLocation{model.lsystem.file, 0, 0},
-                    "the curve leaves the plane; fractal music reads 2D curves");
-    try {
-        Score score = scoreFromScene(scene, model.view.turtle.stepLength,
-                                     request.music.value_or(musicOptions(model.view)));
-        score.title = fs::path(model.lsystem.file).stem().string();
-        return score;
-    } catch (const Error& e) {
-        throw Error(SourceLocation{model.lsystem.file, 0, 0}, e.messages());
-    }
-}
-
-template <Extension E>
-ExportResult writeMusic(const Model& model, const ExportRequest& request,
-                        const Destination& destination) {
-    const Score score = scored(model, request);
+// The curve the turtle draws, read as a score (LSFP ch. 6.3) by the music layer, written by
+// its writer of the row's extension.
+ExportResult writeMusic(const ExportFormat& format, const Model& model,
+                        const ExportRequest& request, const Destination& destination) {
+    const Score score = scoreFromModel(model, requestedSteps(model, request),
+                                       request.music.value_or(musicOptions(model.view)),
+                                       derivationOptions(model, request));
     request.cancel.check();
-    destination.writeThroughFile(
-        "score", E.text, [&](const fs::path& file) { writeScore(score, file, request.audio); });
+    destination.writeThroughFile("score", std::string(format.extension), [&](const fs::path& file) {
+        writeScore(score, file, request.audio);
+    });
     return ExportResult{requestedSteps(model, request), RenderRoute::LineArt, {}, {}};
 }
 
 constexpr ExportFormat kFormats[] = {
-    {"svg", ".svg", ExportKind::Picture, "line art (SVG)", false, false, true,
-     writeRendered<FileFormat::Svg>},
+    {"svg", ".svg", ExportKind::Picture, "line art (SVG)", false, false, true, writeRendered},
     {"png", ".png", ExportKind::Picture, "a picture: line art, or ray traced for 3D", true, false,
-     true, writeRendered<FileFormat::Png>},
-    {"pdf", ".pdf", ExportKind::Picture, "line art (PDF)", true, false, true,
-     writeRendered<FileFormat::Pdf>},
+     true, writeRendered},
+    {"pdf", ".pdf", ExportKind::Picture, "line art (PDF)", true, false, true, writeRendered},
     {"obj", ".obj", ExportKind::Mesh, "Wavefront OBJ with its .mtl materials", false, false, false,
-     writeRendered<FileFormat::Obj>},
+     writeRendered},
     {"ply", ".ply", ExportKind::Mesh, "binary PLY with vertex colours", true, false, false,
-     writeRendered<FileFormat::Ply>},
+     writeRendered},
     {"glb", ".glb", ExportKind::Mesh, "glTF 2.0 binary, repeated organs instanced", true, false,
-     false, writeRendered<FileFormat::Glb>},
-    {"gif", ".gif", ExportKind::Animation, "animated GIF", true, false, false,
-     writeAnimation<".gif">},
-    {"webp", ".webp", ExportKind::Animation, "animated WebP", true, false, false,
-     writeAnimation<".webp">},
-    {"mp4", ".mp4", ExportKind::Animation, "H.264 video", true, false, false,
-     writeAnimation<".mp4">},
+     false, writeRendered},
+    {"gif", ".gif", ExportKind::Animation, "animated GIF", true, false, false, writeAnimation},
+    {"webp", ".webp", ExportKind::Animation, "animated WebP", true, false, false, writeAnimation},
+    {"mp4", ".mp4", ExportKind::Animation, "H.264 video", true, false, false, writeAnimation},
     {"frames", "", ExportKind::Animation, "a folder of PNG frames", true, true, false, writeFrames},
-    {"mid", ".mid", ExportKind::Music, "Standard MIDI File", true, false, false,
-     writeMusic<".mid">},
+    {"mid", ".mid", ExportKind::Music, "Standard MIDI File", true, false, false, writeMusic},
     {"wav", ".wav", ExportKind::Music, "audio played by FluidSynth", true, false, false,
-     writeMusic<".wav">},
+     writeMusic},
     {"musicxml", ".musicxml", ExportKind::Music, "MusicXML notation", false, false, false,
-     writeMusic<".musicxml">},
-    {"ly", ".ly", ExportKind::Music, "LilyPond source", false, false, false, writeMusic<".ly">},
+     writeMusic},
+    {"ly", ".ly", ExportKind::Music, "LilyPond source", false, false, false, writeMusic},
     {"score-pdf", ".pdf", ExportKind::Music, "the score engraved by LilyPond (PDF)", true, false,
-     false, writeMusic<".pdf">},
+     false, writeMusic},
     {"score-png", ".png", ExportKind::Music, "the score engraved by LilyPond (PNG)", true, false,
-     false, writeMusic<".png">},
+     false, writeMusic},
     {"score-svg", ".svg", ExportKind::Music, "the score engraved by LilyPond (SVG)", false, false,
-     false, writeMusic<".svg">},
+     false, writeMusic},
 };
 
 std::string lowered(std::string_view text) {
@@ -223,7 +190,7 @@ ExportResult exportModel(const Model& model, const Destination& destination,
     const ExportFormat& format = exportFormatFor(request, destination);
     if (format.fileOnly && destination.kind() != Destination::Kind::File)
         throw requestError(std::string(format.description) + " can only be written to disk");
-    return format.write(model, request, destination);
+    return format.write(format, model, request, destination);
 }
 
 ExportResult exportMap(const MapLSystem& system, const Destination& destination,

@@ -55,7 +55,9 @@ struct ExportFormat {
     bool binary = true;      // false for text formats (SVG, OBJ, MusicXML, LilyPond)
     bool fileOnly = false;   // a folder, or files beside it: never a stream or memory
     bool drawsMaps = false;  // a map L-system can be written in it
-    ExportResult (*write)(const Model&, const ExportRequest&, const Destination&) = nullptr;
+    // Writes the model in this row's format.
+    ExportResult (*write)(const ExportFormat&, const Model&, const ExportRequest&,
+                          const Destination&) = nullptr;
 };
 
 // Every format, in the order the command lists them.
