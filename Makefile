@@ -31,7 +31,7 @@ STUDIO_PACKAGES := libcpp-httplib-dev chromium
 # library is compiled with the sanitizers, through this folder's CMAKE_CXX_FLAGS.
 FUZZ_BUILD_DIR ?= build-fuzz
 FUZZ_SECONDS ?= 300
-FUZZ_TARGETS ?= parse derive surface expression data_files camera
+FUZZ_TARGETS ?= parse derive surface expression data_files camera studio
 FUZZ_PACKAGES := clang libclang-rt-dev
 FUZZ_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=undefined \
               -fsanitize=fuzzer-no-link -fno-omit-frame-pointer -g

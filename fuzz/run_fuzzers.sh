@@ -33,7 +33,9 @@ options_for() {
         data_files) echo "-max_len=4096 -timeout=10 -rss_limit_mb=1024 -dict=$here/dict/view.dict" ;;
         # A flags byte, four sizes and 16 doubles: longer inputs add nothing.
         camera) echo "-max_len=256 -timeout=10 -rss_limit_mb=1024" ;;
-        *) echo "unknown fuzz target '$1' (parse, derive, surface, expression, data_files, camera)" >&2; exit 2 ;;
+        # A route byte and a JSON body, or a whole HTTP request (fuzz_studio.cpp).
+        studio) echo "-max_len=8192 -timeout=30 -rss_limit_mb=2048 -dict=$here/dict/studio.dict" ;;
+        *) echo "unknown fuzz target '$1' (parse, derive, surface, expression, data_files, camera, studio)" >&2; exit 2 ;;
     esac
 }
 

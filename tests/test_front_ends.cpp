@@ -236,6 +236,27 @@ TEST(FrontEnds, AMapLSystemOpenedInTheStudioDrawsItsCellLayer) {
     fs::remove_all(scratch);
 }
 
+TEST(FrontEnds, TheStudioOffersEveryFormatADownloadCanHold) {
+    // The page's export menu is the registry's rows, engraved scores included; only the
+    // folder of frames is left out.
+    std::vector<std::string_view> offered;
+    for (const ExportFormat* f : studio::studioExportFormats()) offered.push_back(f->name);
+    std::vector<std::string_view> expected;
+    for (const ExportFormat& f : exportFormats())
+        if (f.name != "frames") expected.push_back(f.name);
+    EXPECT_EQ(offered, expected);
+    EXPECT_NE(std::find(offered.begin(), offered.end(), "score-svg"), offered.end());
+
+    // The LilyPond source downloaded is the command's file.
+    const fs::path scratch = scratchFolder();
+    const fs::path file = kExamples / "fig6.9-hilbert-music.l";
+    const fs::path ly = scratch / "cli.ly";
+    ASSERT_EQ(runGraftal("music '" + file.string() + "' -o '" + ly.string() + "'").status, 0);
+    EXPECT_EQ(studio::exportFile(studioInput(file), "ly", studio::StudioLimits{}, {}, scratch).bytes,
+              readFile(ly));
+    fs::remove_all(scratch);
+}
+
 TEST(ExportRegistry, OneRowPerFormatFoundByNameAndExtension) {
     EXPECT_EQ(findExportFormat("png")->kind, ExportKind::Picture);
     EXPECT_EQ(findExportFormat(".PDF")->kind, ExportKind::Picture);

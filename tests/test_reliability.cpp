@@ -144,6 +144,31 @@ TEST(Reliability, LilyPondIsStoppedAfterItsTimeLimit) {
     EXPECT_FALSE(alive(pid)) << "lilypond " << pid << " still runs";
 }
 
+// LilyPond runs under the writer's memory limit: a lilypond that writes the address-space
+// limit it was given (ulimit -v, in KiB) and fails.
+TEST(Reliability, LilyPondRunsUnderTheMemoryLimit) {
+    TempDir dir;
+    const fs::path script =
+        dir.write("lilypond", "#!/bin/sh\nulimit -v > " + (dir.path() / "limit").string() +
+                                  "\necho 'not enough memory' >&2\nexit 1\n");
+    fs::permissions(script, fs::perms::owner_all);
+    ::setenv("GRAFTAL_LILYPOND", script.c_str(), 1);
+    try {
+        graftal::engraveScore(shortScore(), dir.path() / "score.pdf", std::size_t(64) << 20);
+        ADD_FAILURE() << "a failed lilypond gave a score";
+    } catch (const graftal::Error& e) {
+        EXPECT_NE(e.messages().find("at most 64 MiB: --memory-limit"), std::string::npos)
+            << e.messages();
+        EXPECT_NE(e.messages().find("not enough memory"), std::string::npos) << e.messages();
+    }
+    ::unsetenv("GRAFTAL_LILYPOND");
+    std::ifstream limit(dir.path() / "limit");
+    long kib = 0;
+    limit >> kib;
+    EXPECT_EQ(kib, 64 * 1024);
+    EXPECT_FALSE(fs::exists(dir.path() / "score.pdf"));
+}
+
 TEST(Reliability, LilyPondDiesWithGraftal) {
     TempDir dir;
     const std::string command = "GRAFTAL_LILYPOND=" + sleepyLilyPond(dir).string() + " " +

@@ -1,6 +1,7 @@
 // LilyPond source of a score, and the engraved score made by running the lilypond program.
 #include <fcntl.h>
 #include <sys/prctl.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -108,8 +109,10 @@ double lilyPondSeconds() {
 
 // Runs `args` with its output in `log`, in a process group of its own that dies with this
 // process (PR_SET_PDEATHSIG) and is killed whole after `seconds`: no lilypond (or the
-// ghostscript it starts) is left running when graftal stops or gives up.
-RunResult run(const std::vector<std::string>& args, const fs::path& log, double seconds) {
+// ghostscript it starts) is left running when graftal stops or gives up. Each of them may map
+// at most `memoryBytes` (RLIMIT_AS): past it, its allocations fail and it exits.
+RunResult run(const std::vector<std::string>& args, const fs::path& log, double seconds,
+              std::size_t memoryBytes) {
     RunResult result;
     std::vector<char*> argv;
     for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
@@ -128,6 +131,9 @@ RunResult run(const std::vector<std::string>& args, const fs::path& log, double 
         ::setpgid(0, 0);
         ::prctl(PR_SET_PDEATHSIG, SIGKILL);
         if (::getppid() != parent) ::_exit(127);  // the parent died before the line above
+        const struct rlimit memory = {static_cast<rlim_t>(memoryBytes),
+                                      static_cast<rlim_t>(memoryBytes)};
+        ::setrlimit(RLIMIT_AS, &memory);
         ::dup2(in, 0);
         ::dup2(out, 1);
         ::dup2(out, 2);
@@ -212,7 +218,7 @@ fs::path findLilyPond() {
     return findOnPath("lilypond");
 }
 
-void engraveScore(const Score& score, const fs::path& path) {
+void engraveScore(const Score& score, const fs::path& path, std::size_t memoryLimit) {
     std::string ext = path.extension().string();
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     if (ext != ".pdf" && ext != ".png" && ext != ".svg")
@@ -248,7 +254,7 @@ void engraveScore(const Score& score, const fs::path& path) {
     args.insert(args.end(), {"-o", (tmp.path / "score").string(), source.string()});
     const fs::path log = tmp.path / "lilypond.log";
     const double seconds = lilyPondSeconds();
-    const RunResult ran = run(args, log, seconds);
+    const RunResult ran = run(args, log, seconds, memoryLimit);
     if (ran.timedOut) {
         std::ostringstream limit;
         limit << seconds;
@@ -263,7 +269,10 @@ void engraveScore(const Score& score, const fs::path& path) {
         throw fileError(path,
                         "cannot engrave the score: lilypond " +
                             (status < 0 ? std::string("could not be run")
-                                        : "failed (exit status " + std::to_string(status) + ")") +
+                                        : "failed (exit status " + std::to_string(status) +
+                                              "; it may map at most " +
+                                              std::to_string(memoryLimit >> 20) +
+                                              " MiB: --memory-limit)") +
                             (detail.empty() ? "" : ":\n" + detail));
     }
     fs::path made = tmp.path / ("score" + ext);

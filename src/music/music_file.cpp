@@ -41,7 +41,7 @@ void writeScore(const Score& score, const std::filesystem::path& path, const Aud
         case MusicFormat::Pdf:
         case MusicFormat::Png:
         case MusicFormat::Svg:
-            engraveScore(score, path);
+            engraveScore(score, path, audio.memoryLimit);
             break;
         case MusicFormat::MusicXml:
             writeMusicXml(score, path);

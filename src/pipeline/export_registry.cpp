@@ -115,7 +115,9 @@ std::string lowered(std::string_view text) {
     return s;
 }
 
-std::string_view kindName(ExportKind kind) {
+}  // namespace
+
+std::string_view exportKindName(ExportKind kind) {
     switch (kind) {
         case ExportKind::Picture:
             return "picture";
@@ -128,6 +130,8 @@ std::string_view kindName(ExportKind kind) {
     }
     return "file";
 }
+
+namespace {
 
 }  // namespace
 
@@ -180,7 +184,7 @@ const ExportFormat& exportFormatFor(const ExportRequest& request, const Destinat
         if (const ExportFormat* f = findExportFormat("frames", kind)) return *f;
     if (!extension.empty())
         if (const ExportFormat* f = findExportFormat(extension, kind)) return *f;
-    throw requestError(path.string() + ": unknown " + std::string(kind ? kindName(*kind) : "file") +
+    throw requestError(path.string() + ": unknown " + std::string(kind ? exportKindName(*kind) : "file") +
                            " format (use " + exportFormatList(kind) + ")",
                        "format");
 }

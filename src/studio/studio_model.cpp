@@ -353,15 +353,12 @@ std::string meshGlb(const StudioPicture& picture, const fs::path& /*scratch*/) {
     return glb;
 }
 
-const std::vector<std::string>& exportFormats() {
-    // The registry's formats that a download can hold (not a folder of frames), but the
-    // engraved scores, which need LilyPond and take seconds.
-    static const std::vector<std::string> formats = [] {
-        std::vector<std::string> names;
+const std::vector<const ExportFormat*>& studioExportFormats() {
+    static const std::vector<const ExportFormat*> formats = [] {
+        std::vector<const ExportFormat*> rows;
         for (const ExportFormat& f : graftal::exportFormats())
-            if (!f.fileOnly && f.name.find('-') == std::string_view::npos)
-                names.emplace_back(f.name);
-        return names;
+            if (!f.fileOnly) rows.push_back(&f);
+        return rows;
     }();
     return formats;
 }
@@ -369,12 +366,14 @@ const std::vector<std::string>& exportFormats() {
 ExportedFile exportFile(const ModelInput& input, const std::string& format,
                         const StudioLimits& limits, const CancellationToken& cancel,
                         const fs::path& /*scratch*/) {
-    const auto& formats = exportFormats();
-    if (std::find(formats.begin(), formats.end(), format) == formats.end())
+    const auto& formats = studioExportFormats();
+    const auto found = std::find_if(formats.begin(), formats.end(),
+                                    [&](const ExportFormat* f) { return f->name == format; });
+    if (found == formats.end())
         throw Error(SourceLocation{"studio", 0, 0}, "unknown export format '" + format + "'");
     const Model model = parseOrThrow(input);
     const std::string stem = input.file.stem().string();
-    const ExportFormat* entry = findExportFormat(format);
+    const ExportFormat* entry = *found;
     ExportRequest request = pipelineRequest(input, limits, cancel);
     request.format = format;
     // An animation is every step from 0 to the slider's, one fixed camera.

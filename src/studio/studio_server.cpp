@@ -48,6 +48,17 @@ std::string readFile(const fs::path& path) {
     return bytes.str();
 }
 
+// The export menu's entries: the registry's rows the studio offers, grouped by kind.
+json formatsJson() {
+    json formats = json::array();
+    for (const ExportFormat* f : studioExportFormats())
+        formats.push_back({{"name", f->name},
+                           {"extension", f->extension},
+                           {"kind", exportKindName(f->kind)},
+                           {"description", f->description}});
+    return formats;
+}
+
 json parseBody(const httplib::Request& req) {
     try {
         json body = json::parse(req.body);
@@ -108,13 +119,58 @@ const char* contentTypeFor(const std::string& extension) {
     return it == types.end() ? "application/octet-stream" : it->second;
 }
 
+// One request's bytes in, the answer's bytes out: a connection without a socket.
+class MemoryStream final : public httplib::Stream {
+  public:
+    explicit MemoryStream(std::string_view request) : request_(request) {}
+    bool is_readable() const override { return position_ < request_.size(); }
+    bool is_writable() const override { return true; }
+    ssize_t read(char* ptr, size_t size) override {
+        const size_t n = std::min(size, request_.size() - position_);
+        std::memcpy(ptr, request_.data() + position_, n);
+        position_ += n;
+        return static_cast<ssize_t>(n);
+    }
+    ssize_t write(const char* ptr, size_t size) override {
+        answer_.append(ptr, size);
+        return static_cast<ssize_t>(size);
+    }
+    void get_remote_ip_and_port(std::string& ip, int& port) const override {
+        ip = "127.0.0.1";
+        port = 0;
+    }
+    void get_local_ip_and_port(std::string& ip, int& port) const override {
+        ip = "127.0.0.1";
+        port = 0;
+    }
+    socket_t socket() const override { return INVALID_SOCKET; }
+    std::string& answer() { return answer_; }
+
+  private:
+    std::string_view request_;
+    size_t position_ = 0;
+    std::string answer_;
+};
+
+// httplib's server with its request processing reachable without a socket, so that the
+// routes can be driven directly (StudioServer::answer).
+class HttpServer final : public httplib::Server {
+  public:
+    std::string answer(std::string_view request) {
+        MemoryStream stream(request);
+        bool closed = false;
+        process_request(stream, true, closed, nullptr);
+        return std::move(stream.answer());
+    }
+};
+
 }  // namespace
 
 struct StudioServer::Impl {
     StudioOptions options;
     StudioRoot root;
     fs::path scratch;
-    httplib::Server server;
+    HttpServer server;
     std::thread thread;
     StudioSessions sessions;
     std::atomic<bool> stopping{false};
@@ -319,7 +375,7 @@ struct StudioServer::Impl {
         server.Get("/api/info", guarded([this](const httplib::Request&, httplib::Response& res) {
                        sendJson(res, {{"root", root.folder().string()},
                                       {"onlyFile", root.onlyFile()},
-                                      {"formats", exportFormats()},
+                                      {"formats", formatsJson()},
                                       {"limits",
                                        {{"bodyBytes", options.limits.bodyBytes},
                                         {"segmentBudget", options.limits.segmentBudget},
@@ -495,8 +551,9 @@ struct StudioServer::Impl {
                 const json body = parseBody(req);
                 const ModelInput input = modelInput(body);
                 const std::string format = body.value("format", "");
-                const auto& formats = exportFormats();
-                if (std::find(formats.begin(), formats.end(), format) == formats.end())
+                const auto& formats = studioExportFormats();
+                if (std::none_of(formats.begin(), formats.end(),
+                                 [&](const ExportFormat* f) { return f->name == format; }))
                     throw BadRequest("unknown export format '" + format.substr(0, 20) + "'");
                 const CancellationToken token = sessions.begin(sessionOf(body) + "/export");
                 StudioLimits limits = options.limits;
@@ -562,6 +619,10 @@ int StudioServer::start(int port) {
 
 void StudioServer::wait() {
     if (impl_->thread.joinable()) impl_->thread.join();
+}
+
+std::string StudioServer::answer(std::string_view request) {
+    return impl_->server.answer(request);
 }
 
 const std::string& StudioServer::token() const {

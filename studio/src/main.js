@@ -352,8 +352,35 @@ async function exportAs(format) {
     $('note').textContent = `export ${format}: ${e.message}`;
   }
 }
-for (const button of document.querySelectorAll('#exports [data-format]'))
-  button.addEventListener('click', () => exportAs(button.dataset.format));
+// The export menu, from the formats the engine offers (its export registry): pictures and 3D
+// files as buttons, the rest (animations, music, ...) in the menu, grouped by kind.
+function exportMenu(formats) {
+  const buttons = $('export-buttons'), more = $('export-more');
+  const groups = new Map();
+  for (const f of formats) {
+    const label = f.name.toUpperCase();
+    if (f.kind === 'picture' || f.kind === '3D file') {
+      const button = document.createElement('button');
+      button.dataset.format = f.name;
+      button.textContent = label;
+      button.title = f.name === 'obj' ? f.description + ', in a .zip' : f.description;
+      button.addEventListener('click', () => exportAs(f.name));
+      buttons.append(button);
+      continue;
+    }
+    if (!groups.has(f.kind)) {
+      const group = document.createElement('optgroup');
+      group.label = f.kind;
+      groups.set(f.kind, group);
+      more.append(group);
+    }
+    const option = document.createElement('option');
+    option.value = f.name;
+    option.textContent = label;
+    option.title = f.description;
+    groups.get(f.kind).append(option);
+  }
+}
 $('export-more').addEventListener('change', (e) => {
   const format = e.target.value;
   e.target.value = '';
@@ -366,6 +393,7 @@ window.addEventListener('beforeunload', () => { if (text() !== state.savedText) 
 
 async function start() {
   const [meta, list] = await Promise.all([api.info(), api.listFiles()]);
+  exportMenu(meta.formats || []);
   showFiles(list.files, openFile);
   const wanted = decodeURIComponent(location.hash.slice(1));
   const first = list.files.find((f) => f.path === wanted) || list.files.find((f) => f.path === meta.onlyFile) || list.files[0];

@@ -103,7 +103,10 @@ void writeLilyPond(const Score& score, const std::filesystem::path& path);
 
 // The engraved score (.pdf, .png or .svg) made by running the lilypond program. Throws Error
 // saying how to install LilyPond when it is not on the PATH (the .ly output needs nothing).
-void engraveScore(const Score& score, const std::filesystem::path& path);
+// LilyPond (and the Ghostscript it starts) may map at most `memoryLimit` bytes, and run for
+// $GRAFTAL_LILYPOND_SECONDS (default 120 s); past either it is stopped, with an Error.
+void engraveScore(const Score& score, const std::filesystem::path& path,
+                  std::size_t memoryLimit = std::size_t(1) << 30);
 // Where the lilypond program is; empty when it is not installed.
 std::filesystem::path findLilyPond();
 

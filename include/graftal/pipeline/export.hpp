@@ -60,6 +60,9 @@ struct ExportFormat {
                           const Destination&) = nullptr;
 };
 
+// "picture", "3D file", "animation", "music file": for messages and menus.
+std::string_view exportKindName(ExportKind kind);
+
 // Every format, in the order the command lists them.
 std::span<const ExportFormat> exportFormats();
 

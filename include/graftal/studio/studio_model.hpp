@@ -122,11 +122,11 @@ struct ExportedFile {
     std::string bytes;
 };
 
-// The formats the page exports, each through the library call the command line makes:
-// pictures and 3D files by render() (png svg pdf glb ply; obj comes as a .zip holding the
-// OBJ and its .mtl), animations by writeAnimationFile() (gif webp mp4, as graftal animate)
-// and music by writeScore() (mid wav musicxml ly, as graftal music).
-const std::vector<std::string>& exportFormats();
+// The formats the page exports: every row of the pipeline's export registry that a download
+// can hold (not a folder of frames), each written by the row's writer as the command writes
+// it (an OBJ comes as a .zip holding the OBJ and its .mtl). The page builds its export menu
+// from this list (/api/info).
+const std::vector<const ExportFormat*>& studioExportFormats();
 
 // The model exported as `format` (one of exportFormats(); anything else throws Error).
 ExportedFile exportFile(const ModelInput& input, const std::string& format,

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <string_view>
 
 #include "graftal/studio/studio_model.hpp"
 #include "graftal/studio/studio_root.hpp"
@@ -44,6 +45,10 @@ class StudioServer {
     // Blocks until stop() (from another thread or a signal handler's thread).
     void wait();
     void stop();
+    // Answers one HTTP request given as its bytes, through every check and route a
+    // connection's request meets, and returns the answer's bytes: for the fuzz target that
+    // drives the handlers. Before start() the server's own host is 127.0.0.1:0.
+    std::string answer(std::string_view request);
     // The secret a request must carry (empty when none is required).
     const std::string& token() const;
 
