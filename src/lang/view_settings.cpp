@@ -338,7 +338,21 @@ std::string applyTorqueElasticity(ViewSettings& v, const ViewSetting& s) {
     return "";
 }
 
+// A camera point the ray tracer can aim from or at: finite and within 1e15 of the origin
+// (farther, single-precision rays lose the scene). Said where the file sets it, not later
+// by the picture.
+std::string cameraPointProblem(const Vec3& p, const char* what) {
+    constexpr double kFarthest = 1e15;
+    if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) &&
+        std::abs(p.x) <= kFarthest && std::abs(p.y) <= kFarthest && std::abs(p.z) <= kFarthest)
+        return "";
+    return std::string("the ") + what +
+           " must be a finite point within 1e15 of the origin (a picture cannot be aimed "
+           "from or at one farther out)";
+}
+
 std::string applyViewpoint(ViewSettings& v, const ViewSetting& s) {
+    if (std::string e = cameraPointProblem(vector(s), "viewpoint"); !e.empty()) return e;
     v.camera.viewpoint = vector(s);
     return "";
 }
@@ -348,6 +362,8 @@ void printViewpoint(std::ostream& os, const ViewSettings& v) {
 }
 
 std::string applyViewReferencePoint(ViewSettings& v, const ViewSetting& s) {
+    if (std::string e = cameraPointProblem(vector(s), "view reference point"); !e.empty())
+        return e;
     v.camera.referencePoint = vector(s);
     return "";
 }
@@ -358,6 +374,8 @@ void printViewReferencePoint(std::ostream& os, const ViewSettings& v) {
 
 std::string applyUpVector(ViewSettings& v, const ViewSetting& s) {
     if (isZero(vector(s))) return "the up vector must not be zero";
+    if (!cameraPointProblem(vector(s), "up vector").empty())
+        return "the up vector must be finite (each component within 1e15)";
     v.camera.upVector = vector(s);
     return "";
 }
@@ -383,7 +401,7 @@ void printProjection(std::ostream& os, const ViewSettings& v) {
 
 std::string applyFieldOfView(ViewSettings& v, const ViewSetting& s) {
     double d = number(s);
-    if (d <= 0 || d >= 180) return "field of view must be between 0 and 180 degrees";
+    if (!(d > 0 && d < 180)) return "field of view must be between 0 and 180 degrees";
     v.camera.fieldOfView = d;
     return "";
 }
