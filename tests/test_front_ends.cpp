@@ -2,6 +2,9 @@
 // view, and an animation's last frame all go through the pipeline's stages, so one model
 // must look the same in each (kolam dots and `spline: path` included), and a map L-system
 // opened in the studio draws its cell layer.
+#include <sys/inotify.h>
+#include <unistd.h>
+
 #include <cairo.h>
 #include <gtest/gtest.h>
 
@@ -254,6 +257,53 @@ TEST(FrontEnds, TheStudioOffersEveryFormatADownloadCanHold) {
     ASSERT_EQ(runGraftal("music '" + file.string() + "' -o '" + ly.string() + "'").status, 0);
     EXPECT_EQ(studio::exportFile(studioInput(file), "ly", studio::StudioLimits{}, {}, scratch).bytes,
               readFile(ly));
+    fs::remove_all(scratch);
+}
+
+TEST(ExportRegistry, AnimationsAndMusicInMemoryAreTheFilesBytesAndNoScratchFile) {
+    const fs::path scratch = scratchFolder();
+    const Model music = load(kExamples / "fig6.9-hilbert-music.l");
+    const Model plant = load(kExamples / "fig2.5a-koch-curve.l");
+    for (const char* name : {"gif", "webp", "mp4", "mid", "wav", "musicxml", "ly"}) {
+        SCOPED_TRACE(name);
+        const ExportFormat* format = findExportFormat(name);
+        ASSERT_NE(format, nullptr);
+        const Model& model = format->kind == ExportKind::Music ? music : plant;
+        ExportRequest request;
+        request.format = name;
+        request.steps = 3;
+        request.picture.width = request.picture.height = 64;
+        const fs::path file = scratch / ("out" + std::string(format->extension));
+        exportModel(model, Destination::file(file), request);
+        // Watched: nothing of this process's is created in the temporary folder (the watch
+        // is first shown to see a file named as the writers named theirs).
+        const int watch = ::inotify_init1(IN_NONBLOCK | IN_CLOEXEC);
+        ASSERT_GE(watch, 0);
+        const fs::path tmp = fs::temp_directory_path();
+        ASSERT_GE(::inotify_add_watch(watch, tmp.c_str(), IN_CREATE), 0);
+        const std::string ours = "graftal-" + std::to_string(::getpid()) + "-";
+        const auto created = [&] {
+            std::vector<std::string> names;
+            alignas(inotify_event) char events[16384];
+            for (ssize_t n; (n = ::read(watch, events, sizeof events)) > 0;)
+                for (char* at = events; at < events + n;) {
+                    const auto* event = reinterpret_cast<const inotify_event*>(at);
+                    if (event->len > 0 && std::string(event->name).rfind(ours, 0) == 0)
+                        names.emplace_back(event->name);
+                    at += sizeof(inotify_event) + event->len;
+                }
+            return names;
+        };
+        std::ofstream(tmp / (ours + "probe")).put('x');
+        fs::remove(tmp / (ours + "probe"));
+        EXPECT_EQ(created(), std::vector<std::string>{ours + "probe"});
+        std::string bytes;
+        exportModel(model, Destination::memory(bytes, "download"), request);
+        EXPECT_EQ(created(), std::vector<std::string>{});
+        ::close(watch);
+        EXPECT_GT(bytes.size(), 20u);
+        EXPECT_EQ(bytes, readFile(file));
+    }
     fs::remove_all(scratch);
 }
 

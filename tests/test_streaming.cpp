@@ -82,7 +82,7 @@ TEST(Streaming, StreamedPngEqualsTheMaterialisedPng) {
     o.height = 150;
     auto a = t.path() / "a.png", b = t.path() / "b.png";
     writeImage(interpret(ls, derive(ls, 3)), o, a);
-    renderStreamedPng(ls, 3, {}, o, b);
+    renderStreamedPng(ls, 3, {}, o, Destination::file(b));
     cairo_surface_t* sa = cairo_image_surface_create_from_png(a.c_str());
     cairo_surface_t* sb = cairo_image_surface_create_from_png(b.c_str());
     ASSERT_EQ(cairo_image_surface_get_width(sb), 200);

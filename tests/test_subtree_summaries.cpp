@@ -139,8 +139,8 @@ TEST(SubtreeSummaries, SummarisedPictureMatchesTheStrokeByStrokeOne) {
         EXPECT_NEAR(quick.bounds.max.y, exact.bounds.max.y, 0.02 * pixel);
 
         auto a = t.path() / "exact.png", b = t.path() / "summarised.png";
-        renderStreamedPng(ls, n, {}, o, a);  // few segments: stroke by stroke
-        renderSummarisedPng(ls, sums, o, b);
+        renderStreamedPng(ls, n, {}, o, Destination::file(a));  // few segments: stroke by stroke
+        renderSummarisedPng(ls, sums, o, Destination::file(b));
         int w = 0, h = 0, w2 = 0, h2 = 0;
         std::vector<int> ga = greens(a, w, h), gb = greens(b, w2, h2);
         ASSERT_EQ(w2, 200);

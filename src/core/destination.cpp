@@ -1,9 +1,12 @@
 // Destinations of written bytes (destination.hpp).
 #include "graftal/core/destination.hpp"
 
+#include <sys/mman.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <sstream>
@@ -54,59 +57,54 @@ void Destination::write(const std::string& what,
 
 namespace {
 
-// A private file in the system's temporary folder, removed when this goes.
-class TemporaryFile {
+// An anonymous file in memory (memfd), named by /proc/self/fd/N for the libraries that open
+// a path: nothing is created in any folder, and it goes when closed.
+class MemoryFile {
   public:
-    explicit TemporaryFile(const std::string& extension) {
-        static std::atomic<unsigned> counter{0};
-        std::error_code ec;
-        fs::path dir = fs::temp_directory_path(ec);
-        if (ec) dir = "/tmp";
-        path_ = dir / ("graftal-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) +
-                       extension);
+    explicit MemoryFile(const fs::path& destination) {
+        fd_ = ::memfd_create("graftal-output", MFD_CLOEXEC);
+        if (fd_ < 0)
+            throw fileError(destination,
+                            std::string("cannot write: no memory file (") + std::strerror(errno) +
+                                ")");
+        path_ = "/proc/self/fd/" + std::to_string(fd_);
     }
-    ~TemporaryFile() {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    TemporaryFile(const TemporaryFile&) = delete;
-    TemporaryFile& operator=(const TemporaryFile&) = delete;
+    ~MemoryFile() { ::close(fd_); }
+    MemoryFile(const MemoryFile&) = delete;
+    MemoryFile& operator=(const MemoryFile&) = delete;
     const fs::path& path() const { return path_; }
 
+    // What the writer left in it (it may have replaced the file through its path: read
+    // through the path, not the descriptor).
+    bool read(std::string& bytes) const {
+        std::ifstream in(path_, std::ios::binary);
+        if (!in) return false;
+        bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+        return true;
+    }
+
   private:
+    int fd_ = -1;
     fs::path path_;
 };
 
 }  // namespace
 
-void Destination::writeThroughFile(const std::string& what, const std::string& extension,
+void Destination::writeThroughFile(const std::string& what,
                                    const std::function<void(const fs::path&)>& write) const {
     if (kind_ == Kind::File) {
-        // The writer picks its format by the name's extension: the temporary keeps it.
-        writeFileAtomically(
-            path_,
-            [&](const fs::path& temporary) {
-                const fs::path named = temporary.string() + extension;
-                write(named);
-                std::error_code ec;
-                fs::rename(named, temporary, ec);
-                if (ec) {
-                    fs::remove_all(named, ec);
-                    throw fileError(path_, "cannot write " + what + ": the writer left no file");
-                }
-            },
-            what);
+        writeFileAtomically(path_, write, what);
         return;
     }
-    TemporaryFile temporary(extension);
+    const MemoryFile file(path_);
     try {
-        write(temporary.path());
+        write(file.path());
     } catch (const Error& e) {
         throw fileError(path_, e.messages());
     }
-    std::ifstream in(temporary.path(), std::ios::binary);
-    if (!in) throw fileError(path_, "cannot write " + what + ": the writer left no file");
-    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::string bytes;
+    if (!file.read(bytes))
+        throw fileError(path_, "cannot write " + what + ": the writer left no file");
     this->write(what, [&](std::ostream& out) {
         out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
     });

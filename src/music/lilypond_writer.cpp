@@ -207,10 +207,9 @@ std::string lilyPondSource(const Score& score, bool onePage) {
     return os.str();
 }
 
-void writeLilyPond(const Score& score, const fs::path& path) {
+void writeLilyPond(const Score& score, const Destination& destination) {
     std::string text = lilyPondSource(score);
-    writeStreamAtomically(
-        path, [&](std::ostream& out) { out << text; }, "LilyPond score");
+    destination.write("LilyPond score", [&](std::ostream& out) { out << text; });
 }
 
 fs::path findLilyPond() {
@@ -219,11 +218,22 @@ fs::path findLilyPond() {
 }
 
 void engraveScore(const Score& score, const fs::path& path, std::size_t memoryLimit) {
-    std::string ext = path.extension().string();
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    if (ext != ".pdf" && ext != ".png" && ext != ".svg")
-        throw fileError(path,
-                        "cannot engrave a score as '" + ext + "': expected .pdf, .png or .svg");
+    const std::optional<MusicFormat> format = musicFormatFor(path);
+    if (!format || (*format != MusicFormat::Pdf && *format != MusicFormat::Png &&
+                    *format != MusicFormat::Svg))
+        throw fileError(path, "cannot engrave a score as '" + path.extension().string() +
+                                  "': expected .pdf, .png or .svg");
+    engraveScore(score, *format, Destination::file(path), memoryLimit);
+}
+
+void engraveScore(const Score& score, MusicFormat format, const Destination& destination,
+                  std::size_t memoryLimit) {
+    const fs::path& path = destination.path();
+    const std::string ext = format == MusicFormat::Pdf   ? ".pdf"
+                            : format == MusicFormat::Png ? ".png"
+                            : format == MusicFormat::Svg ? ".svg"
+                                                         : "";
+    if (ext.empty()) throw fileError(path, "cannot engrave a score but as PDF, PNG or SVG");
     const std::string what = "score";
     fs::path lilypond = findLilyPond();
     if (lilypond.empty())
@@ -279,8 +289,8 @@ void engraveScore(const Score& score, const fs::path& path, std::size_t memoryLi
     if (!fs::exists(made)) made = tmp.path / ("score-page1" + ext);
     if (!fs::exists(made))
         throw fileError(path, "cannot engrave the score: lilypond wrote no " + ext + " file");
-    writeFileAtomically(
-        path, [&](const fs::path& temporary) { fs::copy_file(made, temporary); }, what);
+    std::ifstream in(made, std::ios::binary);
+    destination.write(what, [&](std::ostream& out) { out << in.rdbuf(); });
 }
 
 }  // namespace graftal

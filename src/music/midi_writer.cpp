@@ -59,7 +59,8 @@ void addText(smf_track_t* track, unsigned char type, const std::string& text) {
 
 }  // namespace
 
-void writeMidi(const Score& score, const std::filesystem::path& path) {
+void writeMidi(const Score& score, const Destination& destination) {
+    const std::filesystem::path& path = destination.path();
     silenceSmf();
     lastSmfMessage.clear();
     std::unique_ptr<smf_t, SmfDeleter> smf(smf_new());
@@ -92,15 +93,12 @@ void writeMidi(const Score& score, const std::filesystem::path& path) {
     if (smf_track_add_eot_pulses(tempoTrack, end) != 0 || smf_track_add_eot_pulses(notes, end) != 0)
         throw fileError(path, "cannot write MIDI file: " + lastSmfMessage);
 
-    writeFileAtomically(
-        path,
-        [&](const std::filesystem::path& temporary) {
-            if (smf_save(smf.get(), temporary.c_str()) != 0)
-                throw fileError(path, "cannot write MIDI file: " +
-                                          (lastSmfMessage.empty() ? std::string("libsmf failed")
-                                                                  : lastSmfMessage));
-        },
-        "MIDI file");
+    destination.writeThroughFile("MIDI file", [&](const std::filesystem::path& file) {
+        if (smf_save(smf.get(), file.c_str()) != 0)
+            throw fileError(path, "cannot write MIDI file: " +
+                                      (lastSmfMessage.empty() ? std::string("libsmf failed")
+                                                              : lastSmfMessage));
+    });
 }
 
 }  // namespace graftal

@@ -28,23 +28,28 @@ void writeScore(const Score& score, const std::filesystem::path& path, const Aud
     if (!format)
         throw fileError(path, "unknown music format '" + path.extension().string() +
                                   "' (expected " + musicExtensionList() + ")");
-    switch (*format) {
+    writeScore(score, *format, Destination::file(path), audio);
+}
+
+void writeScore(const Score& score, MusicFormat format, const Destination& destination,
+                const AudioOptions& audio) {
+    switch (format) {
         case MusicFormat::Midi:
-            writeMidi(score, path);
+            writeMidi(score, destination);
             break;
         case MusicFormat::Wav:
-            writeWav(score, path, audio);
+            writeWav(score, destination, audio);
             break;
         case MusicFormat::LilyPond:
-            writeLilyPond(score, path);
+            writeLilyPond(score, destination);
             break;
         case MusicFormat::Pdf:
         case MusicFormat::Png:
         case MusicFormat::Svg:
-            engraveScore(score, path, audio.memoryLimit);
+            engraveScore(score, format, destination, audio.memoryLimit);
             break;
         case MusicFormat::MusicXml:
-            writeMusicXml(score, path);
+            writeMusicXml(score, destination);
             break;
     }
 }

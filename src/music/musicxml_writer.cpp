@@ -110,10 +110,9 @@ std::string musicXml(const Score& score) {
     return os.str();
 }
 
-void writeMusicXml(const Score& score, const std::filesystem::path& path) {
+void writeMusicXml(const Score& score, const Destination& destination) {
     std::string text = musicXml(score);
-    writeStreamAtomically(
-        path, [&](std::ostream& out) { out << text; }, "MusicXML score");
+    destination.write("MusicXML score", [&](std::ostream& out) { out << text; });
 }
 
 }  // namespace graftal

@@ -108,7 +108,8 @@ std::filesystem::path findSoundFont() {
     return {};
 }
 
-void writeWav(const Score& score, const std::filesystem::path& path, const AudioOptions& audio) {
+void writeWav(const Score& score, const Destination& destination, const AudioOptions& audio) {
+    const std::filesystem::path& path = destination.path();
     if (audio.sampleRate < 8000 || audio.sampleRate > 96000)
         throw fileError(path,
                         "cannot write audio: the sample rate must be from 8000 to 96000, "
@@ -181,9 +182,7 @@ void writeWav(const Score& score, const std::filesystem::path& path, const Audio
 
     const float gain = peak > 0 ? 0.9f / peak : 1.0f;
     const auto dataBytes = static_cast<std::uint32_t>(mono.size() * 2);
-    writeStreamAtomically(
-        path,
-        [&](std::ostream& out) {
+    destination.write("audio", [&](std::ostream& out) {
             out.write("RIFF", 4);
             put32(out, 36 + dataBytes);
             out.write("WAVEfmt ", 8);
@@ -200,8 +199,7 @@ void writeWav(const Score& score, const std::filesystem::path& path, const Audio
                 long q = std::lround(std::clamp(v * gain, -1.0f, 1.0f) * 32767.0f);
                 put16(out, static_cast<std::uint16_t>(static_cast<std::int16_t>(q)));
             }
-        },
-        "audio");
+    });
 }
 
 }  // namespace graftal

@@ -145,6 +145,60 @@ void checkAnimationOutput(const fs::path& output, AnimationFormat format) {
     }
 }
 
+namespace {
+
+// Encodes the frames `produce` gives into `file` (any name: the format is given). Errors of
+// whatever makes the frames (a derivation's, Cancelled) are kept in `producerError`.
+void encodeFrames(const fs::path& file, AnimationFormat format, const AnimationEncoding& encoding,
+                  const std::function<void(AnimationEncoder&)>& produce,
+                  std::exception_ptr& producerError) {
+    std::unique_ptr<AnimationEncoder> encoder;
+    switch (format) {
+        case AnimationFormat::Gif:
+            encoder = openGifEncoder(file, encoding);
+            break;
+        case AnimationFormat::WebP:
+            encoder = openWebPEncoder(file, encoding);
+            break;
+        case AnimationFormat::Mp4:
+            encoder = openMp4Encoder(file, encoding);
+            break;
+        case AnimationFormat::PngFrames:
+            break;
+    }
+    EncoderErrors watched(*encoder);
+    try {
+        produce(watched);
+    } catch (...) {
+        if (!watched.failed) producerError = std::current_exception();
+        throw;
+    }
+    encoder->finish();
+}
+
+}  // namespace
+
+void writeAnimation(const Destination& destination, AnimationFormat format,
+                    const AnimationEncoding& encoding,
+                    const std::function<void(AnimationEncoder&)>& produce) {
+    if (destination.kind() == Destination::Kind::File) {
+        writeAnimation(destination.path(), format, encoding, produce);
+        return;
+    }
+    if (format == AnimationFormat::PngFrames)
+        throw fileError(destination.path(),
+                        "a folder of PNG frames can only be written to a folder on disk");
+    std::exception_ptr producerError;
+    try {
+        destination.writeThroughFile(animationFormatName(format), [&](const fs::path& file) {
+            encodeFrames(file, format, encoding, produce, producerError);
+        });
+    } catch (...) {
+        if (producerError) std::rethrow_exception(producerError);
+        throw;
+    }
+}
+
 void writeAnimation(const fs::path& output, AnimationFormat format,
                     const AnimationEncoding& encoding,
                     const std::function<void(AnimationEncoder&)>& produce) {
@@ -160,28 +214,7 @@ void writeAnimation(const fs::path& output, AnimationFormat format,
         writeFileAtomically(
             output,
             [&](const fs::path& temporary) {
-                std::unique_ptr<AnimationEncoder> encoder;
-                switch (format) {
-                    case AnimationFormat::Gif:
-                        encoder = openGifEncoder(temporary, encoding);
-                        break;
-                    case AnimationFormat::WebP:
-                        encoder = openWebPEncoder(temporary, encoding);
-                        break;
-                    case AnimationFormat::Mp4:
-                        encoder = openMp4Encoder(temporary, encoding);
-                        break;
-                    case AnimationFormat::PngFrames:
-                        break;
-                }
-                EncoderErrors watched(*encoder);
-                try {
-                    produce(watched);
-                } catch (...) {
-                    if (!watched.failed) producerError = std::current_exception();
-                    throw;
-                }
-                encoder->finish();
+                encodeFrames(temporary, format, encoding, produce, producerError);
             },
             animationFormatName(format));
     } catch (...) {

@@ -190,18 +190,6 @@ void writePdfFile(const DerivationDiagram& d, const std::filesystem::path& path)
         throw cairoError(path, "cannot write PDF", st);
 }
 
-void writeSvgFile(const DerivationDiagram& d, const std::filesystem::path& path) {
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    if (!out)
-        throw Error(SourceLocation{path.string(), 0, 0},
-                    std::string("cannot create file: ") + std::strerror(errno));
-    writeDerivationDiagramSvg(d, out);
-    out.close();
-    if (!out)
-        throw Error(SourceLocation{path.string(), 0, 0},
-                    "cannot write SVG: write failed (disk full?)");
-}
-
 }  // namespace
 
 void writeDerivationDiagramSvg(const DerivationDiagram& d, std::ostream& out) {
@@ -243,34 +231,47 @@ void writeDerivationDiagramSvg(const DerivationDiagram& d, std::ostream& out) {
     if (!out) throw Error(SourceLocation{}, "cannot write SVG: output stream failed");
 }
 
+void writeDerivationDiagram(const DerivationDiagram& d, ImageFormat format,
+                            const Destination& destination) {
+    switch (format) {
+        case ImageFormat::Svg:
+            destination.write("SVG", [&](std::ostream& out) { writeDerivationDiagramSvg(d, out); });
+            return;
+        case ImageFormat::Png:
+            destination.writeThroughFile(
+                "PNG", [&](const std::filesystem::path& file) { writePngFile(d, file); });
+            return;
+        case ImageFormat::Pdf:
+            destination.writeThroughFile(
+                "PDF", [&](const std::filesystem::path& file) { writePdfFile(d, file); });
+            return;
+        case ImageFormat::Obj:
+        case ImageFormat::Ply:
+        case ImageFormat::Glb:
+            break;
+    }
+    throw Error(SourceLocation{destination.name(), 0, 0},
+                "a derivation diagram is drawn to .svg, .png or .pdf");
+}
+
 void writeDerivationDiagram(const DerivationDiagram& d, const std::filesystem::path& path) {
     const std::optional<ImageFormat> format = imageFormatFor(path);
     if (!format)
         throw Error(SourceLocation{path.string(), 0, 0},
                     "unknown image file extension '" + path.extension().string() +
                         "'; a derivation diagram is drawn to .svg, .png or .pdf");
-    writeFileAtomically(path, [&](const std::filesystem::path& temporary) {
-        switch (*format) {
-            case ImageFormat::Svg:
-                writeSvgFile(d, temporary);
-                return;
-            case ImageFormat::Png:
-                writePngFile(d, temporary);
-                return;
-            case ImageFormat::Pdf:
-                writePdfFile(d, temporary);
-                return;
-            case ImageFormat::Obj:
-            case ImageFormat::Ply:
-            case ImageFormat::Glb:
-                return;  // not pictures: imageFormatFor never gives them
-        }
-    });
+    writeDerivationDiagram(d, *format, Destination::file(path));
 }
 
 void writeDerivationDiagram(const std::vector<ModuleString>& steps, const SymbolTable& symbols,
                             const RenderOptions& o, const std::filesystem::path& path) {
     writeDerivationDiagram(layoutDerivationDiagram(steps, symbols, o), path);
+}
+
+void writeDerivationDiagram(const std::vector<ModuleString>& steps, const SymbolTable& symbols,
+                            const RenderOptions& o, ImageFormat format,
+                            const Destination& destination) {
+    writeDerivationDiagram(layoutDerivationDiagram(steps, symbols, o), format, destination);
 }
 
 }  // namespace graftal

@@ -45,27 +45,27 @@ bool streamedPictureIsSummarised(const Model& model, int steps, std::size_t memo
 }
 
 void renderStreamedPng(const Model& model, int steps, const DerivationOptions& options,
-                       const RenderOptions& render, const std::filesystem::path& path) {
+                       const RenderOptions& render, const Destination& destination) {
     if (SubtreeSummaries sums(model, steps, options.memoryLimit);
         sums.available() && sums.segments() > summariseAbove(render)) {
-        renderSummarisedPng(model, sums, render, path);
+        renderSummarisedPng(model, sums, render, destination);
         return;
     }
     StreamedMeasure m = measureStreamed(model, steps, options, true);
     StreamedPng png(render, m.bounds, m.ink, m.segments > 0, m.baseWidth, Scene::defaultPalette(),
-                    path);
+                    destination);
     PngDrawing drawing(png);
     drawStreamed(model, steps, options, drawing);
     png.finish();
 }
 
 void renderSummarisedPng(const Model& model, const SubtreeSummaries& sums,
-                         const RenderOptions& render, const std::filesystem::path& path,
+                         const RenderOptions& render, const Destination& destination,
                          double dotRadius, double pixelTolerance) {
     StreamedMeasure measure =
         measureSummarised(model, sums, std::max(render.width, render.height), pixelTolerance);
     StreamedPng png(render, measure.bounds, measure.ink, measure.segments > 0, measure.baseWidth,
-                    Scene::defaultPalette(), path);
+                    Scene::defaultPalette(), destination);
     const ImageTransform transform = ImageTransform::fit(measure.bounds, render);
     // A path that covers its picture many times over (a Koch curve that turns back on
     // itself) would still give many strokes per pixel, each costing as much as any and only

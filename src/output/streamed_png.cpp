@@ -20,7 +20,8 @@ struct StreamedPng::Impl {
     double lineWidth = 1;
     float baseWidth = 1;
     std::vector<Rgb> palette;
-    std::filesystem::path path;
+    Destination destination = Destination::file({});
+    std::filesystem::path path;  // the destination's name, for messages
     cairo_surface_t* surface = nullptr;
     cairo_t* cr = nullptr;
     int inPath = 0;
@@ -40,6 +41,11 @@ struct StreamedPng::Impl {
 
 StreamedPng::StreamedPng(const RenderOptions& o, const Bounds& bounds, double ink, bool anySegments,
                          float baseWidth, std::vector<Rgb> palette, std::filesystem::path path)
+    : StreamedPng(o, bounds, ink, anySegments, baseWidth, std::move(palette),
+                  Destination::file(std::move(path))) {}
+
+StreamedPng::StreamedPng(const RenderOptions& o, const Bounds& bounds, double ink, bool anySegments,
+                         float baseWidth, std::vector<Rgb> palette, Destination destination)
     : impl_(std::make_unique<Impl>()) {
     Impl& m = *impl_;
     m.options = o;
@@ -47,7 +53,8 @@ StreamedPng::StreamedPng(const RenderOptions& o, const Bounds& bounds, double in
     m.baseWidth = baseWidth > 0 ? baseWidth : 1;
     m.lineWidth = defaultLineWidth(ink, anySegments, bounds, o) / m.baseWidth;
     m.palette = std::move(palette);
-    m.path = std::move(path);
+    m.path = destination.path();
+    m.destination = std::move(destination);
     if (o.width < 1 || o.height < 1 || o.width > 32767 || o.height > 32767)
         throw Error(SourceLocation{m.path.string(), 0, 0},
                     "image size out of range (1 to 32767 per side)");
@@ -114,8 +121,13 @@ void StreamedPng::finish() {
         throw Error(SourceLocation{m.path.string(), 0, 0},
                     std::string("cannot draw the picture: ") + cairo_status_to_string(st));
     cairo_surface_flush(m.surface);
-    writeFileAtomically(m.path, [&](const std::filesystem::path& temporary) {
-        if (auto st = cairo_surface_write_to_png(m.surface, temporary.c_str());
+    m.destination.write("PNG", [&](std::ostream& out) {
+        const auto toStream = [](void* closure, const unsigned char* data, unsigned int length) {
+            auto& o = *static_cast<std::ostream*>(closure);
+            o.write(reinterpret_cast<const char*>(data), length);
+            return o ? CAIRO_STATUS_SUCCESS : CAIRO_STATUS_WRITE_ERROR;
+        };
+        if (auto st = cairo_surface_write_to_png_stream(m.surface, toStream, &out);
             st != CAIRO_STATUS_SUCCESS)
             throw Error(SourceLocation{m.path.string(), 0, 0},
                         std::string("cannot write PNG: ") + cairo_status_to_string(st));

@@ -12,7 +12,7 @@ namespace graftal {
 // wider than `dotRadius` pixels; each smaller one is one stroke from its start to its end.
 // The first pass finds the bounds to within `pixelTolerance` of a pixel.
 void renderSummarisedPng(const Model& model, const SubtreeSummaries& summaries,
-                         const RenderOptions& render, const std::filesystem::path& path,
+                         const RenderOptions& render, const Destination& destination,
                          double dotRadius = 0.25, double pixelTolerance = 0.02);
 
 }  // namespace graftal

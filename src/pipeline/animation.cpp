@@ -428,7 +428,13 @@ std::vector<AnimationFrame> animationFrames(const Model& model, const AnimationR
 AnimationResult writeAnimationFile(const Model& model, const AnimationRequest& request) {
     checkAnimationRequest(request);
     if (request.output.empty()) throw requestError("an animation needs an output (-o)");
-    const AnimationFormat format = *animationFormatFor(request.output);
+    return writeAnimationTo(model, request, *animationFormatFor(request.output),
+                            Destination::file(request.output));
+}
+
+AnimationResult writeAnimationTo(const Model& model, const AnimationRequest& request,
+                                 AnimationFormat format, const Destination& destination) {
+    checkAnimationRequest(request);
     AnimationEncoding encoding;
     encoding.width = request.picture.width;
     encoding.height = request.picture.height;
@@ -436,7 +442,7 @@ AnimationResult writeAnimationFile(const Model& model, const AnimationRequest& r
     encoding.globalPalette = request.globalPalette;
     encoding.dither = request.dither;
     AnimationResult result;
-    writeAnimation(request.output, format, encoding, [&](AnimationEncoder& encoder) {
+    writeAnimation(destination, format, encoding, [&](AnimationEncoder& encoder) {
         result = animate(model, request, [&](const AnimationFrame& frame) {
             encoder.add(frame.image, frame.seconds);
         });

@@ -34,21 +34,16 @@ ExportResult writeRendered(const ExportFormat& format, const Model& model,
     return renderTo(model, render, *fileFormatFor(render.output), destination);
 }
 
-// The frames go through the animation encoders, which write named files.
+// The frames through the animation encoders, to any destination.
 ExportResult writeAnimation(const ExportFormat& format, const Model& model,
                             const ExportRequest& request, const Destination& destination) {
     AnimationRequest animation = request;
-    ExportResult result;
-    const std::string extension(format.extension);
-    destination.writeThroughFile("animation", extension, [&](const fs::path& file) {
-        animation.output = file;
-        checkAnimationRequest(animation);
-        const AnimationResult a = writeAnimationFile(model, animation);
-        result.steps = a.to;
-        result.route = a.route;
-        result.notes = a.notes;
-    });
-    return result;
+    animation.output.clear();  // the destination is the output
+    const AnimationResult a =
+        writeAnimationTo(model, animation,
+                         *animationFormatFor("animation" + std::string(format.extension)),
+                         destination);
+    return ExportResult{a.to, a.route, a.notes, {}};
 }
 
 // A folder of PNG frames: only a folder on disk can hold it.
@@ -73,9 +68,14 @@ ExportResult writeMusic(const ExportFormat& format, const Model& model,
                                        request.music.value_or(musicOptions(model.view)),
                                        derivationOptions(model, request));
     request.cancel.check();
-    destination.writeThroughFile("score", std::string(format.extension), [&](const fs::path& file) {
-        writeScore(score, file, request.audio);
-    });
+    // The engraved scores share their extensions with the pictures: their row's name says
+    // which they are.
+    const std::string name(format.name);
+    const MusicFormat music = name == "score-pdf"   ? MusicFormat::Pdf
+                              : name == "score-png" ? MusicFormat::Png
+                              : name == "score-svg" ? MusicFormat::Svg
+                                                    : *musicFormatFor("score" + std::string(format.extension));
+    writeScore(score, music, destination, request.audio);
     return ExportResult{requestedSteps(model, request), RenderRoute::LineArt, {}, {}};
 }
 

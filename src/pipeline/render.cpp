@@ -146,11 +146,9 @@ void renderDerivation(const Model& model, int steps, const RenderRequest& reques
     else if (model.view.camera.background)
         render.background = *model.view.camera.background;
     request.cancel.check();
-    const std::string extension = destination.path().extension().string();
-    destination.writeThroughFile(
-        "picture", extension.empty() ? ".svg" : extension, [&](const std::filesystem::path& file) {
-            writeDerivationDiagram(strings, model.lsystem.symbols, render, file);
-        });
+    const std::optional<ImageFormat> format = imageFormatFor(destination.path());
+    writeDerivationDiagram(strings, model.lsystem.symbols, render,
+                           format.value_or(ImageFormat::Svg), destination);
 }
 
 // True when the string holds a label, @L: the module L right after an @.
@@ -286,9 +284,7 @@ RenderResult renderTo(const Model& model, const RenderRequest& request, FileForm
             RenderOptions render = request.picture;
             double fill = std::clamp(model.view.camera.scaleFactor / 100.0, 0.01, 1.0);
             render.margin = 0.5 - (0.5 - render.margin) * fill;
-            destination.writeThroughFile("PNG", ".png", [&](const std::filesystem::path& file) {
-                renderStreamedPng(model, steps, derivationOptions(model, request), render, file);
-            });
+            renderStreamedPng(model, steps, derivationOptions(model, request), render, destination);
             result.route = RenderRoute::StreamedPicture;
             return result;
         }

@@ -32,11 +32,12 @@ class Destination {
     // atomically; `what` names the content in errors ("cannot write PNG: ...").
     void write(const std::string& what, const std::function<void(std::ostream&)>& write) const;
 
-    // For libraries that can only write a named file (libsmf, FFmpeg's MP4 muxer, an
-    // external engraver): `write` gets a path; a file destination is written atomically
-    // through a temporary beside it, any other through a private temporary file whose bytes
-    // are then copied to the destination and which is removed in every case.
-    void writeThroughFile(const std::string& what, const std::string& extension,
+    // For libraries that can only write a named file (libsmf, giflib, FFmpeg's MP4 muxer,
+    // Cairo's PDF surface): `write` gets a path to write to, whatever its name (it has no
+    // extension: the writer is told its format). A file destination is written atomically
+    // through a temporary beside it; a stream or memory through an anonymous file in memory
+    // (/proc/self/fd/N), whose bytes are then copied there: no file is made in any folder.
+    void writeThroughFile(const std::string& what,
                           const std::function<void(const std::filesystem::path&)>& write) const;
 
   private:

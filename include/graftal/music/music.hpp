@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "graftal/core/destination.hpp"
 #include "graftal/core/music_scale.hpp"
 #include "graftal/geometry/scene.hpp"
 #include "graftal/lang/model.hpp"
@@ -76,7 +77,10 @@ std::string musicExtensionList();
 
 // Standard MIDI File, format 1: a tempo track and one track with the notes on channel 1,
 // 480 ticks per beat.
-void writeMidi(const Score& score, const std::filesystem::path& path);
+void writeMidi(const Score& score, const Destination& destination);
+inline void writeMidi(const Score& score, const std::filesystem::path& path) {
+    writeMidi(score, Destination::file(path));
+}
 
 // The audio synthesised by FluidSynth with `soundFont` (empty: findSoundFont()): 16-bit PCM
 // WAV, mono, `sampleRate` samples per second; the score's length plus `releaseSeconds` for
@@ -90,8 +94,12 @@ struct AudioOptions {
     std::filesystem::path soundFont;
     std::size_t memoryLimit = std::size_t(512) << 20;  // some 50 minutes at 44100 Hz
 };
-void writeWav(const Score& score, const std::filesystem::path& path,
+void writeWav(const Score& score, const Destination& destination,
               const AudioOptions& audio = {});
+inline void writeWav(const Score& score, const std::filesystem::path& path,
+                     const AudioOptions& audio = {}) {
+    writeWav(score, Destination::file(path), audio);
+}
 
 // The General MIDI SoundFont to play with: $GRAFTAL_SOUNDFONT when set, else the best of
 // Debian's standard paths (FluidR3, MuseScore General, then TimGM6mb). Empty when none.
@@ -99,7 +107,10 @@ std::filesystem::path findSoundFont();
 
 // LilyPond source of the score: one staff, 4/4, notes that cross a bar line split and tied.
 std::string lilyPondSource(const Score& score, bool onePage = false);
-void writeLilyPond(const Score& score, const std::filesystem::path& path);
+void writeLilyPond(const Score& score, const Destination& destination);
+inline void writeLilyPond(const Score& score, const std::filesystem::path& path) {
+    writeLilyPond(score, Destination::file(path));
+}
 
 // The engraved score (.pdf, .png or .svg) made by running the lilypond program. Throws Error
 // saying how to install LilyPond when it is not on the PATH (the .ly output needs nothing).
@@ -107,15 +118,24 @@ void writeLilyPond(const Score& score, const std::filesystem::path& path);
 // $GRAFTAL_LILYPOND_SECONDS (default 120 s); past either it is stopped, with an Error.
 void engraveScore(const Score& score, const std::filesystem::path& path,
                   std::size_t memoryLimit = std::size_t(1) << 30);
+// The same as `format` (Pdf, Png or Svg) to a file, a stream or memory.
+void engraveScore(const Score& score, MusicFormat format, const Destination& destination,
+                  std::size_t memoryLimit = std::size_t(1) << 30);
 // Where the lilypond program is; empty when it is not installed.
 std::filesystem::path findLilyPond();
 
 // MusicXML 4.0 (score-partwise), for MuseScore and other notation programs.
 std::string musicXml(const Score& score);
-void writeMusicXml(const Score& score, const std::filesystem::path& path);
+void writeMusicXml(const Score& score, const Destination& destination);
+inline void writeMusicXml(const Score& score, const std::filesystem::path& path) {
+    writeMusicXml(score, Destination::file(path));
+}
 
 // Writes the score in the format of `path`'s extension. Throws Error for an unknown one.
 void writeScore(const Score& score, const std::filesystem::path& path,
+                const AudioOptions& audio = {});
+// The same in `format` to a file, a stream or memory.
+void writeScore(const Score& score, MusicFormat format, const Destination& destination,
                 const AudioOptions& audio = {});
 
 }  // namespace graftal

@@ -88,6 +88,12 @@ void checkAnimationOutput(const std::filesystem::path& output, AnimationFormat f
 void writeAnimation(const std::filesystem::path& output, AnimationFormat format,
                     const AnimationEncoding& encoding,
                     const std::function<void(AnimationEncoder&)>& produce);
+// The same to a stream or memory (an animation in a download, a Python caller's bytes),
+// through an anonymous file in memory: no file is made in any folder. A file destination is
+// the call above.
+void writeAnimation(const Destination& destination, AnimationFormat format,
+                    const AnimationEncoding& encoding,
+                    const std::function<void(AnimationEncoder&)>& produce);
 
 // The PNG writer for one frame in memory (atomically, like every writer).
 void writeRgbaPng(const RgbaImage& image, const std::filesystem::path& path);

@@ -65,5 +65,11 @@ RgbaImage drawDerivationDiagram(const DerivationDiagram& diagram);
 void writeDerivationDiagram(const DerivationDiagram& diagram, const std::filesystem::path& path);
 void writeDerivationDiagram(const std::vector<ModuleString>& steps, const SymbolTable& symbols,
                             const RenderOptions& o, const std::filesystem::path& path);
+// The same in `format` to a file, a stream or memory.
+void writeDerivationDiagram(const DerivationDiagram& diagram, ImageFormat format,
+                            const Destination& destination);
+void writeDerivationDiagram(const std::vector<ModuleString>& steps, const SymbolTable& symbols,
+                            const RenderOptions& o, ImageFormat format,
+                            const Destination& destination);
 
 }  // namespace graftal

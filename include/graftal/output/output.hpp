@@ -67,6 +67,8 @@ class StreamedPng {
   public:
     StreamedPng(const RenderOptions& o, const Bounds& bounds, double ink, bool anySegments,
                 float baseWidth, std::vector<Rgb> palette, std::filesystem::path path);
+    StreamedPng(const RenderOptions& o, const Bounds& bounds, double ink, bool anySegments,
+                float baseWidth, std::vector<Rgb> palette, Destination destination);
     ~StreamedPng();
     StreamedPng(const StreamedPng&) = delete;
     StreamedPng& operator=(const StreamedPng&) = delete;

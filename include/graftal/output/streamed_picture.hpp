@@ -22,6 +22,6 @@ bool streamedPictureIsSummarised(const Model& model, int steps,
 
 // A 2D PNG of the derivation drawn while streaming (two passes: measure, then draw).
 void renderStreamedPng(const Model& model, int steps, const DerivationOptions& options,
-                       const RenderOptions& render, const std::filesystem::path& path);
+                       const RenderOptions& render, const Destination& destination);
 
 }  // namespace graftal

@@ -69,5 +69,8 @@ std::vector<AnimationFrame> animationFrames(const Model& model, const AnimationR
 // Encodes the frames into request.output by its name (.gif .webp .mp4, or a folder of
 // PNG frames), atomically: on an error or when cancelled no partial output is left.
 AnimationResult writeAnimationFile(const Model& model, const AnimationRequest& request);
+// The same in `format` to a file, a stream or memory (request.output is not read).
+AnimationResult writeAnimationTo(const Model& model, const AnimationRequest& request,
+                                 AnimationFormat format, const Destination& destination);
 
 }  // namespace graftal
