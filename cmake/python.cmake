@@ -85,13 +85,20 @@ set_target_properties(graftal_python PROPERTIES INSTALL_RPATH "$ORIGIN/${GRAFTAL
 install(TARGETS graftal_python LIBRARY DESTINATION ${GRAFTAL_PYTHON_INSTALL_DIR}/graftal)
 install(FILES ${GRAFTAL_PYTHON_FILES} DESTINATION ${GRAFTAL_PYTHON_INSTALL_DIR}/graftal)
 
-# The Python tests (tests/python/, pytest) run by ctest, against the module of this build.
+# The Python tests (tests/python/, pytest) run by ctest against the module of this build, one
+# ctest test per file (Python.model, Python.sweep, ...) so that `ctest -j` runs them side by
+# side.
 if(GRAFTAL_BUILD_TESTS)
-  add_test(NAME Python.Module
-    COMMAND ${Python_EXECUTABLE} -m pytest -q -p no:cacheprovider
-            ${CMAKE_CURRENT_SOURCE_DIR}/tests/python
-    WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR})
-  set_tests_properties(Python.Module PROPERTIES
-    ENVIRONMENT "PYTHONPATH=${GRAFTAL_PYTHON_DIR};GRAFTAL_EXE=$<TARGET_FILE:graftal>;GRAFTAL_BUILD_DIR=${CMAKE_BINARY_DIR};PYTHONDONTWRITEBYTECODE=1"
-    TIMEOUT 300)
+  file(GLOB GRAFTAL_PYTHON_TESTS CONFIGURE_DEPENDS
+       ${CMAKE_CURRENT_SOURCE_DIR}/tests/python/test_*.py)
+  foreach(test_file ${GRAFTAL_PYTHON_TESTS})
+    get_filename_component(name ${test_file} NAME_WE)
+    string(REGEX REPLACE "^test_" "" name ${name})
+    add_test(NAME Python.${name}
+      COMMAND ${Python_EXECUTABLE} -m pytest -q -p no:cacheprovider ${test_file}
+      WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR})
+    set_tests_properties(Python.${name} PROPERTIES
+      ENVIRONMENT "PYTHONPATH=${GRAFTAL_PYTHON_DIR};GRAFTAL_EXE=$<TARGET_FILE:graftal>;GRAFTAL_BUILD_DIR=${CMAKE_BINARY_DIR};PYTHONDONTWRITEBYTECODE=1"
+      TIMEOUT 300)
+  endforeach()
 endif()
