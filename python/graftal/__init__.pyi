@@ -163,5 +163,6 @@ def picture(obj: Model | ModuleString | Scene, format: str = "svg", size: int = 
 def show(obj: Model | ModuleString | Scene, height: int = 480, **options: Any) -> Viewer: ...
 def sweep(model: Model | PathLike, grid: Mapping[str, Any] | Sequence[Mapping[str, Any]],
           client: Any = None, *, steps: int | None = None, geometry: bool = True,
-          export: str | None = None, size: int = 256, threads: int = 1,
+          export: str | None = None, size: int = 256, meshes: bool = False,
+          tube_sides: int = 8, threads: int = 1,
           memory_limit: Size | None = None) -> pandas.DataFrame: ...

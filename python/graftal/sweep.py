@@ -38,8 +38,15 @@ def _plain(value):
     return value.item() if hasattr(value, "item") else value
 
 
+def mesh_arrays(mesh):
+    """A Mesh as a dict of NumPy arrays (what travels back from a worker): vertices,
+    normals, indices, triangle_rgb (each triangle's colour, 0 to 1)."""
+    return {"vertices": mesh.vertices, "normals": mesh.normals, "indices": mesh.indices,
+            "triangle_rgb": mesh.palette[mesh.triangle_colors % max(len(mesh.palette), 1)]}
+
+
 def run_point(model, point, steps=None, geometry=True, export=None, size=256, threads=1,
-              memory_limit=None):
+              memory_limit=None, meshes=False, tube_sides=8):
     """One point of a sweep: the model read with the point's constants, derived with its
     seed, and measured (and exported when `export` names a format). Returns the row."""
     point = {k: _plain(v) for k, v in point.items()}
@@ -64,12 +71,15 @@ def run_point(model, point, steps=None, geometry=True, export=None, size=256, th
         if export in ("png", "svg", "pdf"):
             options["size"] = (size, size)
         row[export] = m.export(**options)
+    if meshes:
+        scene = m.derive(steps, seed=seed, threads=threads, memory_limit=memory_limit).scene()
+        row["mesh"] = mesh_arrays(scene.mesh(tube_sides))
     row["seconds"] = time.perf_counter() - start
     return row
 
 
 def sweep(model, grid, client=None, *, steps=None, geometry=True, export=None, size=256,
-          threads=1, memory_limit=None):
+          meshes=False, tube_sides=8, threads=1, memory_limit=None):
     """Derives `model` once per point of `grid` and returns a pandas DataFrame, one row per
     point in grid order: the point's values, then steps, modules, segments, polygons, the
     drawing's box (min_x ... max_z), symbols (counts per module name) and seconds.
@@ -81,6 +91,8 @@ def sweep(model, grid, client=None, *, steps=None, geometry=True, export=None, s
             task, as the workers run tasks side by side); None runs here, in order
     export  a format name ('png', 'glb', ...): a column of that name holds each point's file
             as bytes (pictures size x size pixels)
+    meshes  a column 'mesh' holds each point's mesh as NumPy arrays (see mesh_arrays),
+            stems as tubes of tube_sides sides
     """
     import pandas
 
@@ -88,7 +100,7 @@ def sweep(model, grid, client=None, *, steps=None, geometry=True, export=None, s
         model = _graftal.load(model)
     points = grid_points(grid)
     options = dict(steps=steps, geometry=geometry, export=export, size=size, threads=threads,
-                   memory_limit=memory_limit)
+                   memory_limit=memory_limit, meshes=meshes, tube_sides=tube_sides)
     if client is None:
         rows = [run_point(model, p, **options) for p in points]
     else:
@@ -102,4 +114,4 @@ def sweep(model, grid, client=None, *, steps=None, geometry=True, export=None, s
     return frame[names + [c for c in COLUMNS if c in frame.columns] + extra]
 
 
-__all__ = ["sweep", "grid_points", "run_point"]
+__all__ = ["sweep", "grid_points", "run_point", "mesh_arrays"]

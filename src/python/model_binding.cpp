@@ -51,27 +51,31 @@ ParseResult read(const ModelSource& source, const std::map<std::string, std::str
 // An override of a constant the model does not define would change nothing the user can
 // see (the command takes it silently): from Python it is an error naming the constants
 // there are. The model is read once more without the overrides to learn them.
-void checkDefines(const ModelSource& source) {
+// `known`: the constants, when the caller knows them (a model read before).
+void checkDefines(const ModelSource& source, const std::map<std::string, std::string>* known) {
     if (source.defines.empty()) return;
     ParseResult parsed;
-    {
-        py::gil_scoped_release release;
-        parsed = read(source, {});
+    if (!known) {
+        {
+            py::gil_scoped_release release;
+            parsed = read(source, {});
+        }
+        if (!parsed.ok()) raiseParseError(parsed.errors());
+        known = &parsed.model.lsystem.defines;
     }
-    if (!parsed.ok()) raiseParseError(parsed.errors());
-    const auto& known = parsed.model.lsystem.defines;
     for (const auto& [name, value] : source.defines) {
-        if (known.count(name)) continue;
+        if (known->count(name)) continue;
         std::string names;
-        for (const auto& [k, v] : known) names += (names.empty() ? "" : ", ") + k;
+        for (const auto& [k, v] : *known) names += (names.empty() ? "" : ", ") + k;
         throw py::value_error("defines: the model has no #define " + name +
                               (names.empty() ? std::string(" (it defines none)")
                                              : " (it defines " + names + ")"));
     }
 }
 
-ModelHandle handleOf(ModelSource source) {
-    checkDefines(source);
+ModelHandle handleOf(ModelSource source,
+                     const std::map<std::string, std::string>* known = nullptr) {
+    checkDefines(source, known);
     ParseResult parsed;
     {
         py::gil_scoped_release release;
@@ -108,7 +112,8 @@ ModelHandle parseText(const std::string& text, const std::string& file, py::obje
 ModelHandle withDefines(const ModelHandle& h, py::object defines) {
     ModelSource source = *h.source;
     for (auto& [name, value] : defineMap(defines)) source.defines[name] = value;
-    return handleOf(std::move(source));
+    // The model's constants are those of its file (its own overrides were checked).
+    return handleOf(std::move(source), &h.model->lsystem.defines);
 }
 
 py::tuple sourceState(const ModelHandle& h) {
