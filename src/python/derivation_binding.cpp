@@ -82,10 +82,8 @@ void bindDerivation(py::module_& m) {
              "One more step (past `steps` too); the current string is then .current")
         .def_property_readonly("current", &SteppedDerivation::current,
                                "the current string (a copy of it)")
-        .def_property_readonly("steps_done", &SteppedDerivation::stepsDone,
-                               "the steps done so far")
-        .def_property_readonly("steps", &SteppedDerivation::last,
-                               "the step the iteration stops at")
+        .def_property_readonly("steps_done", &SteppedDerivation::stepsDone, "the steps done so far")
+        .def_property_readonly("steps", &SteppedDerivation::last, "the step the iteration stops at")
         .def("__repr__", [](const SteppedDerivation& d) {
             return "<graftal.Derivation " + std::to_string(d.stepsDone()) + " of " +
                    std::to_string(d.last()) + " steps>";

@@ -75,8 +75,8 @@ class PythonEnvironment : public Environment {
         if (!py::isinstance<py::array>(answer) && py::isinstance<py::sequence>(answer)) {
             py::sequence list = py::reinterpret_borrow<py::sequence>(answer);
             if (py::len(list) != requests.size())
-                throw py::value_error("the environment answered " +
-                                      std::to_string(py::len(list)) + " modules; the string has " +
+                throw py::value_error("the environment answered " + std::to_string(py::len(list)) +
+                                      " modules; the string has " +
                                       std::to_string(requests.size()) + " ?E modules");
             for (std::size_t i = 0; i < requests.size(); ++i) {
                 const auto row = list[i].cast<std::vector<double>>();
@@ -85,11 +85,13 @@ class PythonEnvironment : public Environment {
             }
             return;
         }
-        auto values = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(answer);
+        auto values =
+            py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(answer);
         if (!values || values.ndim() != 2 || std::size_t(values.shape(0)) != requests.size())
             throw py::value_error(
                 "the environment's answer: expected an array of shape (modules, parameters) "
-                "with one row per ?E module (" + std::to_string(requests.size()) + "), or None");
+                "with one row per ?E module (" +
+                std::to_string(requests.size()) + "), or None");
         const std::size_t width = std::size_t(values.shape(1));
         for (std::size_t i = 0; i < requests.size(); ++i) {
             auto& params = requests[i].params;

@@ -73,8 +73,8 @@ std::string joined(const std::vector<Diagnostic>& diagnostics) {
 }
 
 [[noreturn]] void raise(PyObject* type, const std::vector<Diagnostic>& diagnostics) {
-    py::object error =
-        py::reinterpret_steal<py::object>(PyObject_CallFunction(type, "s", joined(diagnostics).c_str()));
+    py::object error = py::reinterpret_steal<py::object>(
+        PyObject_CallFunction(type, "s", joined(diagnostics).c_str()));
     if (!error) throw py::error_already_set();
     error.attr("diagnostics") = diagnosticList(diagnostics);
     PyErr_SetObject(type, error.ptr());
@@ -106,7 +106,8 @@ void bindErrors(py::module_& m) {
         .def_readonly("end_column", &PyDiagnostic::endColumn, "just past its last byte")
         .def_readonly("message", &PyDiagnostic::message, "the message alone")
         .def("__str__", [](const PyDiagnostic& d) { return d.text; })
-        .def("__repr__", [](const PyDiagnostic& d) { return "<graftal.Diagnostic " + d.text + ">"; });
+        .def("__repr__",
+             [](const PyDiagnostic& d) { return "<graftal.Diagnostic " + d.text + ">"; });
 
     errorType = PyErr_NewExceptionWithDoc(
         "graftal.Error",
@@ -115,8 +116,8 @@ void bindErrors(py::module_& m) {
         PyExc_Exception, nullptr);
     parseErrorType = PyErr_NewExceptionWithDoc(
         "graftal.ParseError",
-        "A model that does not parse: .diagnostics holds every error the parser found.",
-        errorType, nullptr);
+        "A model that does not parse: .diagnostics holds every error the parser found.", errorType,
+        nullptr);
     m.attr("Error") = py::handle(errorType);
     m.attr("ParseError") = py::handle(parseErrorType);
 

@@ -156,7 +156,10 @@ void bindGeometry(py::module_& m) {
             [](const SceneHandle& s) { return deriveKeywords(s.settings, s.steps); },
             "the derivation's keywords, as ModuleString.derive_keywords")
         .def_property_readonly(
-            "model", [](const SceneHandle& s) { return ModelHandle{s.model, {}, s.source}; },
+            "model",
+            [](const SceneHandle& s) {
+                return ModelHandle{s.model, {}, s.source};
+            },
             "the Model it was drawn from")
         .def_property_readonly(
             "surfaces", [](const SceneHandle& s) { return s.scene.surfaces.size(); },

@@ -67,9 +67,9 @@ void checkDefines(const ModelSource& source, const std::map<std::string, std::st
         if (known->count(name)) continue;
         std::string names;
         for (const auto& [k, v] : *known) names += (names.empty() ? "" : ", ") + k;
-        throw py::value_error("defines: the model has no #define " + name +
-                              (names.empty() ? std::string(" (it defines none)")
-                                             : " (it defines " + names + ")"));
+        throw py::value_error(
+            "defines: the model has no #define " + name +
+            (names.empty() ? std::string(" (it defines none)") : " (it defines " + names + ")"));
     }
 }
 
@@ -135,8 +135,7 @@ ModelHandle fromState(const py::tuple& t) {
 }
 
 py::object pythonCount(const BigCount& c) {
-    return py::reinterpret_steal<py::object>(
-        PyLong_FromString(c.toString().c_str(), nullptr, 10));
+    return py::reinterpret_steal<py::object>(PyLong_FromString(c.toString().c_str(), nullptr, 10));
 }
 
 // The growth prediction as a dict: exact/expected, reason, modules per step.
@@ -263,13 +262,13 @@ void bindModel(py::module_& m) {
             "statistics",
             [](const ModelHandle& h, py::object steps, py::object seed, unsigned threads,
                py::object memoryLimit, bool geometry, bool stream, py::object environment) {
-                const DeriveSettings settings = deriveSettings(
-                    steps, seed, threads, memoryLimit, "single", std::move(environment));
+                const DeriveSettings settings = deriveSettings(steps, seed, threads, memoryLimit,
+                                                               "single", std::move(environment));
                 CancellationToken cancel;
                 DeriveRequest request = deriveRequest(settings, cancel);
                 if (stream) request.stream = StreamPolicy::Always;
-                const ModelStatistics stats = interruptible(
-                    cancel, [&] { return measured(*h.model, request, geometry); });
+                const ModelStatistics stats =
+                    interruptible(cancel, [&] { return measured(*h.model, request, geometry); });
                 return statisticsDict(h.model->lsystem.symbols, stats);
             },
             py::arg("steps") = py::none(), py::kw_only(), py::arg("seed") = py::none(),
@@ -290,8 +289,8 @@ void bindModel(py::module_& m) {
             [](const ModelHandle& h, py::object path, py::object format, py::object steps,
                py::object seed, unsigned threads, py::object memoryLimit, py::object environment,
                py::object notes, py::kwargs options) -> py::object {
-                const DeriveSettings settings = deriveSettings(
-                    steps, seed, threads, memoryLimit, "single", std::move(environment));
+                const DeriveSettings settings = deriveSettings(steps, seed, threads, memoryLimit,
+                                                               "single", std::move(environment));
                 CancellationToken cancel;
                 ExportRequest request;
                 static_cast<DeriveRequest&>(request) = deriveRequest(settings, cancel);
@@ -346,8 +345,7 @@ void bindModel(py::module_& m) {
              })
         .def("__repr__", [](const ModelHandle& h) {
             return "<graftal.Model '" + h.model->lsystem.name +
-                   "' derivation_length=" + std::to_string(h.model->lsystem.derivationLength) +
-                   ">";
+                   "' derivation_length=" + std::to_string(h.model->lsystem.derivationLength) + ">";
         });
 
     m.def("load", &load, py::arg("path"), py::kw_only(), py::arg("defines") = py::none(),

@@ -36,12 +36,11 @@ void bindModuleString(py::module_& m) {
             static const Symbol empty = 0;
             const Symbol* data = d.modules.empty() ? &empty : d.modules.symbols().data();
             return py::buffer_info(const_cast<Symbol*>(data), sizeof(Symbol),
-                                   py::format_descriptor<Symbol>::format(), 1,
-                                   {d.modules.size()}, {sizeof(Symbol)}, true);
+                                   py::format_descriptor<Symbol>::format(), 1, {d.modules.size()},
+                                   {sizeof(Symbol)}, true);
         })
         .def_property_readonly(
-            "steps", [](const DerivedString& d) { return d.steps; },
-            "the derivation steps it took")
+            "steps", [](const DerivedString& d) { return d.steps; }, "the derivation steps it took")
         .def("__len__", [](const DerivedString& d) { return d.modules.size(); })
         .def("__getitem__", &moduleAt)
         .def("__str__",
@@ -89,7 +88,10 @@ void bindModuleString(py::module_& m) {
             "steps, seed, threads, memory_limit and environment as derive() took them: "
             "model.export(**derive_keywords) draws this string")
         .def_property_readonly(
-            "model", [](const DerivedString& d) { return ModelHandle{d.model, {}, d.source}; },
+            "model",
+            [](const DerivedString& d) {
+                return ModelHandle{d.model, {}, d.source};
+            },
             "the Model it was derived from")
         .def(
             "symbol_counts",

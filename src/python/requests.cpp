@@ -35,9 +35,11 @@ std::size_t byteSize(py::handle value) {
     for (char& c : unit) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
     if (!unit.empty() && unit.back() == 'B') unit.pop_back();
     if (!unit.empty() && unit.back() == 'I') unit.pop_back();
-    static const std::map<std::string, double> units = {
-        {"", 1}, {"K", 1024.0}, {"M", 1024.0 * 1024}, {"G", 1024.0 * 1024 * 1024},
-        {"T", 1024.0 * 1024 * 1024 * 1024}};
+    static const std::map<std::string, double> units = {{"", 1},
+                                                        {"K", 1024.0},
+                                                        {"M", 1024.0 * 1024},
+                                                        {"G", 1024.0 * 1024 * 1024},
+                                                        {"T", 1024.0 * 1024 * 1024 * 1024}};
     const auto u = units.find(unit);
     if (used == 0 || u == units.end() || !(number > 0) || !std::isfinite(number))
         throw py::value_error("memory_limit '" + text +
@@ -129,16 +131,40 @@ py::dict deriveKeywords(const DeriveSettings& settings, int steps) {
 
 // export()'s options (export's keyword arguments besides the derivation's) into `request`.
 void applyExportOptions(ExportRequest& request, const py::dict& options) {
-    static const std::vector<std::string> known = {
-        "size",           "width",          "height",           "line_width",
-        "margin",         "background",     "line_color",       "fill_color",
-        "view",           "viewpoint",      "target",           "up",
-        "light",          "field_of_view",  "samples_per_pixel", "ground",
-        "quality",        "tube_sides",     "surface_divisions", "spline",
-        "spline_path",    "kolam_dots",     "derivation_diagram", "glb_instancing",
-        "glb_compression", "first",         "last",             "frames_per_step",
-        "fps",            "hold_seconds",   "turntable_degrees", "stream",
-        "stream_limit",   "source_file"};
+    static const std::vector<std::string> known = {"size",
+                                                   "width",
+                                                   "height",
+                                                   "line_width",
+                                                   "margin",
+                                                   "background",
+                                                   "line_color",
+                                                   "fill_color",
+                                                   "view",
+                                                   "viewpoint",
+                                                   "target",
+                                                   "up",
+                                                   "light",
+                                                   "field_of_view",
+                                                   "samples_per_pixel",
+                                                   "ground",
+                                                   "quality",
+                                                   "tube_sides",
+                                                   "surface_divisions",
+                                                   "spline",
+                                                   "spline_path",
+                                                   "kolam_dots",
+                                                   "derivation_diagram",
+                                                   "glb_instancing",
+                                                   "glb_compression",
+                                                   "first",
+                                                   "last",
+                                                   "frames_per_step",
+                                                   "fps",
+                                                   "hold_seconds",
+                                                   "turntable_degrees",
+                                                   "stream",
+                                                   "stream_limit",
+                                                   "source_file"};
     for (const auto& [key, value] : options) {
         const std::string k = key.cast<std::string>();
         if (std::find(known.begin(), known.end(), k) == known.end()) {
