@@ -79,7 +79,13 @@ class PythonEnvironment : public Environment {
                                       " modules; the string has " +
                                       std::to_string(requests.size()) + " ?E modules");
             for (std::size_t i = 0; i < requests.size(); ++i) {
-                const auto row = list[i].cast<std::vector<double>>();
+                std::vector<double> row;
+                try {
+                    row = list[i].cast<std::vector<double>>();
+                } catch (const py::cast_error&) {
+                    throw py::type_error("the environment's answer for ?E module " +
+                                         std::to_string(i) + ": expected a sequence of numbers");
+                }
                 auto& params = requests[i].params;
                 std::copy_n(row.begin(), std::min(row.size(), params.size()), params.begin());
             }

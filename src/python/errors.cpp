@@ -130,6 +130,10 @@ void bindErrors(py::module_& m) {
             } catch (py::error_already_set& set) {
                 set.restore();
             }
+        } catch (const py::cast_error& e) {
+            // A value of the wrong type met where the module converts it: a TypeError, as
+            // Python raises for its own functions.
+            PyErr_SetString(PyExc_TypeError, e.what());
         }
     });
 }

@@ -295,7 +295,11 @@ void bindModel(py::module_& m) {
                 ExportRequest request;
                 static_cast<DeriveRequest&>(request) = deriveRequest(settings, cancel);
                 applyExportOptions(request, options);
-                if (!format.is_none()) request.format = format.cast<std::string>();
+                if (!format.is_none()) {
+                    if (!py::isinstance<py::str>(format))
+                        throw py::type_error("format: expected a name such as 'png'");
+                    request.format = format.cast<std::string>();
+                }
                 std::string bytes;
                 const bool toMemory = path.is_none();
                 if (toMemory && request.format.empty())
@@ -311,6 +315,8 @@ void bindModel(py::module_& m) {
                 const ExportResult result = interruptible(
                     cancel, [&] { return exportModel(*h.model, *destination, request); });
                 if (!notes.is_none()) {
+                    if (!py::isinstance<py::list>(notes))
+                        throw py::type_error("notes: expected a list");
                     py::list list = notes.cast<py::list>();
                     for (py::handle d : diagnosticList(result.notes)) list.append(d);
                 }

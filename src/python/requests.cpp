@@ -129,6 +129,9 @@ py::dict deriveKeywords(const DeriveSettings& settings, int steps) {
     return d;
 }
 
+// One of export()'s options into `request` (its name known, its value not None).
+void applyExportOption(ExportRequest& request, const std::string& k, py::handle value);
+
 // export()'s options (export's keyword arguments besides the derivation's) into `request`.
 void applyExportOptions(ExportRequest& request, const py::dict& options) {
     static const std::vector<std::string> known = {"size",
@@ -174,6 +177,17 @@ void applyExportOptions(ExportRequest& request, const py::dict& options) {
                                  "' (known: " + list + ")");
         }
         if (value.is_none()) continue;
+        try {
+            applyExportOption(request, k, value);
+        } catch (const py::cast_error&) {
+            throw py::type_error("export(): " + k + "=" + py::repr(value).cast<std::string>() +
+                                 " has the wrong type");
+        }
+    }
+}
+
+void applyExportOption(ExportRequest& request, const std::string& k, py::handle value) {
+    {
         RenderOptions& picture = request.picture;
         if (k == "size") {
             if (py::isinstance<py::int_>(value)) {
