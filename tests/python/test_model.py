@@ -1,6 +1,7 @@
 """graftal.load / graftal.parse / derive: strings equal to the command's, NumPy views of the
 library's storage, counts and growth, step by step, statistics as `graftal stats`."""
 import json
+import pathlib
 import pickle
 
 import numpy as np
@@ -111,10 +112,16 @@ def test_model_folder_view_file_and_warnings(root, tmp_path):
     folder = tmp_path / "plant"
     folder.mkdir()
     (folder / "plant.l").write_text((root / KOCH).read_text())
-    (folder / "plant.v").write_text("line width: 3\n")
+    (folder / "plant.v").write_text("line style: cylinder\nsparkle: 9\n")
     model = graftal.load(folder)
     assert len(model.derive(1)) == 59
-    assert isinstance(model.warnings, list)
+    # The view file's unknown line is a warning returned, not printed.
+    [w] = model.warnings
+    assert (w.severity, w.line, pathlib.Path(w.file).name) == ("warning", 2, "plant.v")
+    assert "unknown view-file line 'sparkle: 9'" in w.message
+    assert str(w).endswith("warning: unknown view-file line 'sparkle: 9', ignored")
+    same = graftal.load(folder / "plant.l", view=folder / "plant.v")
+    assert len(same.warnings) == 1
 
 
 def test_models_pickle_as_their_source(root):
@@ -124,3 +131,24 @@ def test_models_pickle_as_their_source(root):
     text = graftal.parse("axiom: A\nA --> AB\nB --> A\n", file="t.l")
     assert str(pickle.loads(pickle.dumps(text)).derive(3)) == "ABAAB"
     assert str(honda.with_defines({"R2": 0.9}).derive(3)) != str(honda.derive(3))
+
+
+def test_other_threads_run_while_the_library_works(root):
+    import threading
+    koch = graftal.load(root / KOCH)
+    ticks, running = [0], [True]
+
+    def ticker():
+        while running[0]:
+            ticks[0] += 1
+
+    thread = threading.Thread(target=ticker)
+    thread.start()
+    try:
+        before = ticks[0]
+        s = koch.derive(7, threads=1)  # 4 * 8**7 segments' worth of modules: a second or so
+    finally:
+        running[0] = False
+        thread.join()
+    assert len(s) == koch.predict(7)["modules"][-1]
+    assert ticks[0] - before > 10000  # the GIL was free while it derived
