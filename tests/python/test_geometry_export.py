@@ -60,6 +60,18 @@ def test_export_to_bytes_equals_the_commands_file(root, cli, tmp_path):
     assert struct.unpack(">II", png[16:24]) == (120, 80)
 
 
+@pytest.mark.parametrize("example, name, flags, options", [
+    ("examples/fig2.7b-hilbert.l", "hilbert.png", ["--size", "160x120"], dict(size=(160, 120))),
+    ("examples/fig3.4-plant.l", "plant.svg", [], {}),  # (a PDF holds its date)
+    (BUSH, "bush.png", ["--size", "96x96", "--spp", "1"], dict(size=96, samples_per_pixel=1)),
+    ("examples/fig6.2-snake-kolam.l", "kolam.svg", ["--dots"], dict(kolam_dots=True)),
+])
+def test_gallery_pictures_equal_the_commands(root, cli, tmp_path, example, name, flags, options):
+    cli("render", example, "-o", tmp_path / name, *flags)
+    model = graftal.load(root / example)
+    assert model.export(format=name.split(".")[1], **options) == (tmp_path / name).read_bytes()
+
+
 def test_export_to_a_path_and_read_back(root, tmp_path):
     bush = graftal.load(root / BUSH)
     notes = []
