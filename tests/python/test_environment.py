@@ -51,3 +51,16 @@ def test_queries_carry_the_turtle_frame(root):
     assert np.allclose(seen["heading"][1], [-1, 0, 0])
     assert [list(p) for p in seen["parameters"]] == [[0, 0], [7]]
     assert str(s) == "F(2)?E(0,1.5)+(90)F?E(10)"
+
+
+def test_statistics_and_exports_derive_with_the_python_environment(root, cli, tmp_path):
+    import json
+    model = graftal.load(root / CROWDING)
+    stats = model.statistics(8, environment=Occupancy(0.9))
+    assert stats["modules"] == json.loads(cli("stats", CROWDING, "-n", 8))["modules"]
+    cli("render", CROWDING, "-n", 8, "-o", tmp_path / "crowd.svg")
+    svg = model.export(format="svg", steps=8, environment=Occupancy(0.9))
+    assert svg == (tmp_path / "crowd.svg").read_bytes()
+    # An environment that answers otherwise grows another plant.
+    never = model.statistics(8, environment=lambda step, q: None)
+    assert never["modules"] > stats["modules"]
