@@ -25,6 +25,12 @@ SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 # chromium (the page's npm packages, playwright-core among them, come from
 # studio/package-lock.json into $(BUILD_DIR)/studio-node when the build bundles the page).
 STUDIO_PACKAGES := libcpp-httplib-dev chromium
+# The Python module (docs/python.md): pybind11 against Debian's python3 and NumPy; its tests
+# (pytest), the notebook they execute (nbclient, ipykernel), sweeps on Dask with pandas, and
+# the examples' SciPy and Matplotlib.
+PYTHON_PACKAGES := python3-dev python3-numpy pybind11-dev python3-pybind11 python3-pytest \
+                   python3-nbclient python3-nbformat python3-ipykernel python3-pandas \
+                   python3-dask python3-distributed python3-scipy python3-matplotlib
 
 # The fuzzing build: Debian's clang and its libFuzzer runtime (libclang-rt-dev depends on
 # the default clang's libclang-rt-N-dev, which holds libclang_rt.fuzzer-x86_64.a). The whole
@@ -54,7 +60,7 @@ endef
 
 deps:
 	$(call install-missing,$(DEBIAN_PACKAGES) $(CPFG_PACKAGES) $(NODE_PACKAGES) $(MUSIC_PACKAGES) \
-	  $(STUDIO_PACKAGES) $(ANIMATION_PACKAGES) $(MESH_PACKAGES))
+	  $(STUDIO_PACKAGES) $(ANIMATION_PACKAGES) $(MESH_PACKAGES) $(PYTHON_PACKAGES))
 
 configure: deps
 	@cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release > /dev/null

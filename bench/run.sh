@@ -18,7 +18,8 @@
 #   BENCH_PEER=1              0: skip lindenmayer (and its npm install)
 #   BENCH_DOC=docs/performance.md   where the table goes ("" for nowhere)
 #   BENCH_ROWS="honda23 pcond22"    run only these rows (keys as in bench/report.py, and
-#                             mesh3d: the 3D turtle and mesher, printed, not in the table);
+#                             mesh3d: the 3D turtle and mesher, python: the Python module,
+#                             printed, not in the table);
 #                             the table then lists only them. Default: every row.
 #
 # Results (JSON per row, the table, the PNG) go to BUILD_DIR/bench/results/.
@@ -184,6 +185,14 @@ print("bench: 3D turtle %.3f s + mesh %.3f s for %d segments: %.1f M segments/s,
     else
         say "bench: cannot build graftal_mesh_timing (see $results/mesh_timing.log)"
     fi
+fi
+
+# The Python module (docs/python.md; not in the table): Honda n=20 derived from Python against
+# the command, the parameters read through NumPy without a copy, a 100-point sweep on two
+# Dask workers against one process.
+if wanted python && [ -d "$build/python/graftal" ]; then
+    say "bench: the Python module (bench/python_bench.py)"
+    /usr/bin/python3 "$here/python_bench.py" "$build" >&2 || say "bench: the Python bench failed"
 fi
 
 # Map L-systems (docs/maps.md): Fig 5.2's layer at n=17, 131,072 cells, derived and

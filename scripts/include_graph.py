@@ -29,6 +29,8 @@ MAY_USE = {
     'pipeline': ['music', 'maps', 'output', 'turtle', 'rewrite', 'lang', 'geometry', 'core'],
     'studio': ['pipeline', 'music', 'maps', 'output', 'turtle', 'rewrite', 'lang', 'geometry',
                'core'],
+    'python': ['pipeline', 'music', 'maps', 'output', 'turtle', 'rewrite', 'lang', 'geometry',
+               'core'],
     'cli': ['studio', 'pipeline', 'music', 'maps', 'output', 'turtle', 'rewrite', 'lang',
             'geometry', 'core'],
 }

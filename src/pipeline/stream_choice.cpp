@@ -44,6 +44,7 @@ DerivationOptions derivationOptions(const Model& model, const DeriveRequest& req
     opts.cancel = request.cancel;
     opts.print = request.print;
     opts.precision = request.precision;
+    opts.environment = request.environment.get();
     return opts;
 }
 

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -48,6 +49,10 @@ struct DeriveRequest {
     std::function<void(const Diagnostic&)> notify;
     // Where a model's printf writes (cpfg writes to standard error). Empty: dropped.
     std::function<void(std::string_view)> print;
+    // Answers the ?E modules instead of the environment the file's `environment:` lines
+    // describe: one a program supplies (a binding's, written in its own language). Shared,
+    // as requests are copied from stage to stage.
+    std::shared_ptr<Environment> environment;
     CancellationToken cancel;
     // How parameters are stored (DerivationOptions::precision).
     Precision precision = Precision::Single;

@@ -1,0 +1,117 @@
+"""graftal.sweep(): one derivation per point of a grid of #define values and seeds, run on a
+dask.distributed client (or here, one after the other, without one), gathered into a pandas
+DataFrame of the statistics `graftal stats` reports (Model.statistics, the pipeline's
+measured()) and, on request, exported pictures or meshes.
+
+Dask schedules the work: a LocalCluster on this machine, or a scheduler with workers on
+other machines (dask-jobqueue, Kubernetes); docs/python.md shows both. A Model travels to
+the workers as its source (it pickles as the file's path or the text, with its overrides),
+and every worker reads it again with the point's constants.
+"""
+import itertools
+import time
+
+from . import _graftal
+
+#: The statistics columns every row has, after the point's own values.
+COLUMNS = ["steps", "modules", "segments", "polygons", "min_x", "min_y", "min_z", "max_x",
+           "max_y", "max_z", "seconds"]
+
+
+def grid_points(grid):
+    """The points of a grid: a dict of name -> values (every combination, in order) or an
+    iterable of dicts (the points themselves). A name 'seed' sets the derivation's seed;
+    every other name is a #define."""
+    if isinstance(grid, dict):
+        names = list(grid)
+        values = [[v] if isinstance(v, str) or not hasattr(v, "__iter__") else list(v)
+                  for v in (grid[n] for n in names)]
+        return [dict(zip(names, combination)) for combination in itertools.product(*values)]
+    points = [dict(p) for p in grid]
+    if not all(isinstance(p, dict) for p in points):
+        raise TypeError("grid: expected a dict of name -> values, or a list of dicts")
+    return points
+
+
+def _plain(value):
+    """A point's value as Python's own type (NumPy scalars print as numbers in defines)."""
+    return value.item() if hasattr(value, "item") else value
+
+
+def mesh_arrays(mesh):
+    """A Mesh as a dict of NumPy arrays (what travels back from a worker): vertices,
+    normals, indices, triangle_rgb (each triangle's colour, 0 to 1)."""
+    return {"vertices": mesh.vertices, "normals": mesh.normals, "indices": mesh.indices,
+            "triangle_rgb": mesh.palette[mesh.triangle_colors % max(len(mesh.palette), 1)]}
+
+
+def run_point(model, point, steps=None, geometry=True, export=None, size=256, threads=1,
+              memory_limit=None, meshes=False, tube_sides=8):
+    """One point of a sweep: the model read with the point's constants, derived with its
+    seed, and measured (and exported when `export` names a format). Returns the row."""
+    point = {k: _plain(v) for k, v in point.items()}
+    defines = {k: v for k, v in point.items() if k != "seed"}
+    seed = point.get("seed")
+    start = time.perf_counter()
+    m = model.with_defines(defines) if defines else model
+    stats = m.statistics(steps, seed=seed, threads=threads, memory_limit=memory_limit,
+                         geometry=geometry)
+    row = dict(point)
+    row["steps"] = stats["steps"]
+    row["modules"] = stats["modules"]
+    row["segments"] = stats.get("segments")
+    row["polygons"] = stats.get("polygons")
+    bounds = stats.get("bounds") or ((None,) * 3, (None,) * 3)
+    for axis, (lo, hi) in zip("xyz", zip(*bounds)):
+        row["min_" + axis] = lo
+        row["max_" + axis] = hi
+    row["symbols"] = stats["symbols"]
+    if export:
+        options = {"format": export, "steps": steps, "seed": seed, "threads": threads}
+        if export in ("png", "svg", "pdf"):
+            options["size"] = (size, size)
+        row[export] = m.export(**options)
+    if meshes:
+        scene = m.derive(steps, seed=seed, threads=threads, memory_limit=memory_limit).scene()
+        row["mesh"] = mesh_arrays(scene.mesh(tube_sides))
+    row["seconds"] = time.perf_counter() - start
+    return row
+
+
+def sweep(model, grid, client=None, *, steps=None, geometry=True, export=None, size=256,
+          meshes=False, tube_sides=8, threads=1, memory_limit=None):
+    """Derives `model` once per point of `grid` and returns a pandas DataFrame, one row per
+    point in grid order: the point's values, then steps, modules, segments, polygons, the
+    drawing's box (min_x ... max_z), symbols (counts per module name) and seconds.
+
+    model   a graftal.Model, or the path of a model file or folder
+    grid    {'R2': [0.6, 0.7], 'seed': range(4)} (every combination) or a list of points;
+            'seed' sets the seed, other names #define constants
+    client  a dask.distributed.Client: each point is a task on its workers (threads=1 per
+            task, as the workers run tasks side by side); None runs here, in order
+    export  a format name ('png', 'glb', ...): a column of that name holds each point's file
+            as bytes (pictures size x size pixels)
+    meshes  a column 'mesh' holds each point's mesh as NumPy arrays (see mesh_arrays),
+            stems as tubes of tube_sides sides
+    """
+    import pandas
+
+    if not isinstance(model, _graftal.Model):
+        model = _graftal.load(model)
+    points = grid_points(grid)
+    options = dict(steps=steps, geometry=geometry, export=export, size=size, threads=threads,
+                   memory_limit=memory_limit, meshes=meshes, tube_sides=tube_sides)
+    if client is None:
+        rows = [run_point(model, p, **options) for p in points]
+    else:
+        # The model is sent once; every task refers to it.
+        shared = client.scatter(model, broadcast=True)
+        futures = [client.submit(run_point, shared, p, pure=False, **options) for p in points]
+        rows = client.gather(futures)
+    frame = pandas.DataFrame(rows)
+    names = list(points[0]) if points else []
+    extra = [c for c in frame.columns if c not in names and c not in COLUMNS]
+    return frame[names + [c for c in COLUMNS if c in frame.columns] + extra]
+
+
+__all__ = ["sweep", "grid_points", "run_point", "mesh_arrays"]

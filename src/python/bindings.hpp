@@ -1,0 +1,185 @@
+// What the Python module's files share: the objects Python holds (a parsed model, a derived
+// string, a scene, a mesh), the settings a call's keyword arguments make into the pipeline's
+// requests, and running library work with the GIL released and Ctrl-C turned into the
+// library's cancellation. The module is a front end: everything it makes comes from the
+// pipeline's stages (stages.hpp, statistics.hpp) and export registry (export.hpp).
+#pragma once
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <exception>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <type_traits>
+#include <vector>
+
+#include "graftal/core/cancellation.hpp"
+#include "graftal/core/diagnostics.hpp"
+#include "graftal/core/module_string.hpp"
+#include "graftal/geometry/mesh_scene.hpp"
+#include "graftal/geometry/scene.hpp"
+#include "graftal/lang/model.hpp"
+#include "graftal/pipeline/export.hpp"
+#include "graftal/pipeline/pipeline.hpp"
+
+namespace graftal::python {
+
+namespace py = pybind11;
+
+// How to derive, as derive()'s keyword arguments say: the pipeline's DeriveRequest less its
+// callbacks, plus the Python environment (an object answering ?E modules) it keeps alive.
+struct DeriveSettings {
+    std::optional<int> steps;
+    std::optional<std::uint64_t> seed;
+    unsigned threads = 0;
+    std::size_t memoryLimit = std::size_t(2) << 30;
+    Precision precision = Precision::Single;
+    py::object environment;  // None: the file's `environment:` lines
+};
+
+// The pipeline's request for these settings, cancelled through `cancel`.
+DeriveRequest deriveRequest(const DeriveSettings& settings, const CancellationToken& cancel);
+// The settings from derive()'s arguments (steps, seed, threads, memory_limit, precision,
+// environment); checks what Python alone can get wrong (a size's unit, a precision's name).
+DeriveSettings deriveSettings(py::object steps, py::object seed, unsigned threads,
+                              py::object memoryLimit, const std::string& precision,
+                              py::object environment);
+
+// export()'s options (everything but the derivation's settings) into `request`; an unknown
+// keyword is a TypeError naming the known ones.
+void applyExportOptions(ExportRequest& request, const py::dict& options);
+
+// Where a model came from: enough to read it again (with other defines, or in another
+// process: a Model pickles as its source, which is how a sweep sends it to Dask's workers).
+struct ModelSource {
+    std::string path;  // load(): the file or folder; empty for parse()
+    std::string text;  // parse(): the text, `file` naming it
+    std::string file;
+    std::optional<std::string> view;  // load(): a view file's path; parse(): its text
+    std::string viewFile;             // parse(): the view file's name
+    std::map<std::string, std::string> defines;
+};
+
+// A parsed model, shared by everything derived from it.
+struct ModelHandle {
+    std::shared_ptr<const Model> model;
+    std::vector<Diagnostic> warnings;  // the parse's warnings and notes, returned not printed
+    std::shared_ptr<const ModelSource> source;
+};
+
+// A derived string and how it was made (for pictures of it and its scene).
+struct DerivedString {
+    std::shared_ptr<const Model> model;
+    std::shared_ptr<const ModelSource> source;
+    DeriveSettings settings;
+    ModuleString modules;
+    int steps = 0;
+};
+
+// A scene the turtle drew of a derived string, with how it was made.
+struct SceneHandle {
+    std::shared_ptr<const Model> model;
+    std::shared_ptr<const ModelSource> source;
+    DeriveSettings settings;
+    int steps = 0;
+    Scene scene;
+};
+
+// A meshed scene, its placements copied in (one mesh: vertices, normals, triangles).
+struct MeshHandle {
+    Mesh mesh;
+};
+
+// Runs `work` on a thread of its own with the GIL released, while the calling thread waits
+// and looks for signals (PyErr_CheckSignals) every 50 ms. Ctrl-C cancels `cancel`: the work
+// stops at its next check (as the command's Ctrl-C would), and the signal's exception
+// (KeyboardInterrupt) is raised. Python code the work calls back (an environment) takes the
+// GIL itself.
+template <class F>
+auto interruptible(CancellationToken cancel, F&& work) -> decltype(work()) {
+    using Result = decltype(work());
+    using Stored = std::conditional_t<std::is_void_v<Result>, bool, Result>;
+    std::optional<Stored> result;
+    std::exception_ptr failure;
+    std::mutex mutex;
+    std::condition_variable doneChanged;
+    bool done = false;
+    std::thread worker([&] {
+        try {
+            if constexpr (std::is_void_v<Result>) {
+                work();
+                result.emplace(true);
+            } else {
+                result.emplace(work());
+            }
+        } catch (...) {
+            failure = std::current_exception();
+        }
+        std::lock_guard lock(mutex);
+        done = true;
+        doneChanged.notify_all();
+    });
+    bool interrupted = false;
+    for (;;) {
+        {
+            py::gil_scoped_release release;
+            std::unique_lock lock(mutex);
+            if (doneChanged.wait_for(lock, std::chrono::milliseconds(50), [&] { return done; }))
+                break;
+        }
+        if (PyErr_CheckSignals() != 0) {
+            interrupted = true;
+            cancel.cancel();
+            break;
+        }
+    }
+    {
+        py::gil_scoped_release release;
+        worker.join();
+    }
+    if (interrupted) throw py::error_already_set();
+    if (failure) std::rethrow_exception(failure);
+    if constexpr (!std::is_void_v<Result>) return std::move(*result);
+}
+
+// The keywords that derive the same string again (export(**keywords) draws it).
+py::dict deriveKeywords(const DeriveSettings& settings, int steps);
+
+// The parts of the module, each in its own file.
+void bindErrors(py::module_& m);
+void bindModel(py::module_& m);
+void bindModuleString(py::module_& m);
+void bindDerivation(py::module_& m);
+void bindGeometry(py::module_& m);
+
+// The Python environment object as the library's Environment (environment_binding.cpp).
+std::shared_ptr<Environment> pythonEnvironment(py::object environment);
+
+// A diagnostic list as Python Diagnostic objects.
+py::list diagnosticList(const std::vector<Diagnostic>& diagnostics);
+// Raises graftal.ParseError with these diagnostics (the parse's errors).
+[[noreturn]] void raiseParseError(const std::vector<Diagnostic>& diagnostics);
+
+// A read-only NumPy array over `count` elements at `data` (no copy), kept alive by `owner`.
+template <class T>
+py::array viewOf(const T* data, std::size_t count, py::handle owner) {
+    static const T empty{};
+    py::array a(py::dtype::of<T>(), {count}, {sizeof(T)}, data ? data : &empty, owner);
+    py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+    return a;
+}
+
+// Scenes and meshes (geometry_binding.cpp).
+SceneHandle sceneOf(const DerivedString& derived);
+MeshHandle meshOf(const SceneHandle& scene, int tubeSides);
+
+}  // namespace graftal::python

@@ -1,0 +1,390 @@
+// graftal.load() and graftal.parse(), and the Model they return: derive it (the pipeline's
+// derived()), measure it (measured(), what `graftal stats` reports), predict its growth
+// (predictGrowth()) and export it in any format of the registry (exportModel()).
+#include <functional>
+#include <sstream>
+
+#include "bindings.hpp"
+#include "graftal/pipeline/stages.hpp"
+#include "graftal/pipeline/statistics.hpp"
+#include "graftal/rewrite/growth.hpp"
+
+namespace graftal::python {
+
+namespace {
+
+std::map<std::string, std::string> defineMap(const py::object& defines) {
+    std::map<std::string, std::string> map;
+    if (defines.is_none()) return map;
+    if (!py::isinstance<py::dict>(defines))
+        throw py::type_error("defines: expected a dict such as {'N': 3}");
+    for (const auto& [name, value] : defines.cast<py::dict>()) {
+        if (!py::isinstance<py::str>(name)) throw py::type_error("defines: names must be str");
+        if (py::isinstance<py::bool_>(value) ||
+            !(py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value) ||
+              py::isinstance<py::str>(value)))
+            throw py::type_error("defines['" + name.cast<std::string>() +
+                                 "']: expected a number or an expression as str");
+        map[name.cast<std::string>()] = py::str(value).cast<std::string>();
+    }
+    return map;
+}
+
+std::string pathText(const py::object& path) {
+    return py::str(py::module_::import("os").attr("fspath")(path)).cast<std::string>();
+}
+
+// Reads the model a source describes, with `defines` as the overrides.
+ParseResult read(const ModelSource& source, const std::map<std::string, std::string>& defines) {
+    ParseOptions options;
+    options.defines = defines;
+    if (!source.path.empty()) {
+        if (source.view) options.viewFile = *source.view;
+        return loadModel(source.path, options);
+    }
+    options.fileName = source.file;
+    if (!source.view) return parse(source.text, options);
+    return parse(source.text, *source.view,
+                 source.viewFile.empty() ? std::string("view.v") : source.viewFile, options);
+}
+
+// An override of a constant the model does not define would change nothing the user can
+// see (the command takes it silently): from Python it is an error naming the constants
+// there are. The model is read once more without the overrides to learn them.
+// `known`: the constants, when the caller knows them (a model read before).
+void checkDefines(const ModelSource& source, const std::map<std::string, std::string>* known) {
+    if (source.defines.empty()) return;
+    ParseResult parsed;
+    if (!known) {
+        {
+            py::gil_scoped_release release;
+            parsed = read(source, {});
+        }
+        if (!parsed.ok()) raiseParseError(parsed.errors());
+        known = &parsed.model.lsystem.defines;
+    }
+    for (const auto& [name, value] : source.defines) {
+        if (known->count(name)) continue;
+        std::string names;
+        for (const auto& [k, v] : *known) names += (names.empty() ? "" : ", ") + k;
+        throw py::value_error(
+            "defines: the model has no #define " + name +
+            (names.empty() ? std::string(" (it defines none)") : " (it defines " + names + ")"));
+    }
+}
+
+ModelHandle handleOf(ModelSource source,
+                     const std::map<std::string, std::string>* known = nullptr) {
+    checkDefines(source, known);
+    ParseResult parsed;
+    {
+        py::gil_scoped_release release;
+        parsed = read(source, source.defines);
+    }
+    if (!parsed.ok()) raiseParseError(parsed.errors());
+    ModelHandle h;
+    h.warnings = parsed.warnings();
+    h.model = std::make_shared<const Model>(std::move(parsed.model));
+    h.source = std::make_shared<const ModelSource>(std::move(source));
+    return h;
+}
+
+ModelHandle load(py::object path, py::object defines, py::object view) {
+    ModelSource source;
+    source.path = pathText(path);
+    source.defines = defineMap(defines);
+    if (!view.is_none()) source.view = pathText(view);
+    return handleOf(std::move(source));
+}
+
+ModelHandle parseText(const std::string& text, const std::string& file, py::object defines,
+                      py::object viewText, const std::string& viewFile) {
+    ModelSource source;
+    source.text = text;
+    source.file = file;
+    source.defines = defineMap(defines);
+    if (!viewText.is_none()) source.view = viewText.cast<std::string>();
+    source.viewFile = viewFile;
+    return handleOf(std::move(source));
+}
+
+// The same model read with more (or other) constants overridden.
+ModelHandle withDefines(const ModelHandle& h, py::object defines) {
+    ModelSource source = *h.source;
+    for (auto& [name, value] : defineMap(defines)) source.defines[name] = value;
+    // The model's constants are those of its file (its own overrides were checked).
+    return handleOf(std::move(source), &h.model->lsystem.defines);
+}
+
+py::tuple sourceState(const ModelHandle& h) {
+    const ModelSource& s = *h.source;
+    return py::make_tuple(s.path, s.text, s.file, s.view ? py::cast(*s.view) : py::none(),
+                          s.viewFile, s.defines);
+}
+
+ModelHandle fromState(const py::tuple& t) {
+    if (t.size() != 6) throw py::value_error("not a pickled graftal.Model");
+    ModelSource s;
+    s.path = t[0].cast<std::string>();
+    s.text = t[1].cast<std::string>();
+    s.file = t[2].cast<std::string>();
+    if (!t[3].is_none()) s.view = t[3].cast<std::string>();
+    s.viewFile = t[4].cast<std::string>();
+    s.defines = t[5].cast<std::map<std::string, std::string>>();
+    return handleOf(std::move(s));
+}
+
+py::object pythonCount(const BigCount& c) {
+    return py::reinterpret_steal<py::object>(PyLong_FromString(c.toString().c_str(), nullptr, 10));
+}
+
+// The growth prediction as a dict: exact/expected, reason, modules per step.
+py::dict prediction(const ModelHandle& h, py::object steps) {
+    const int n = steps.is_none() ? h.model->lsystem.derivationLength : steps.cast<int>();
+    DeriveRequest check;
+    check.steps = n;
+    requestedSteps(*h.model, check);  // the one check of a step count
+    GrowthPrediction g;
+    {
+        py::gil_scoped_release release;
+        g = predictGrowth(h.model->lsystem, n);
+    }
+    py::dict d;
+    d["steps"] = n;
+    d["exact"] = g.exact;
+    d["expected"] = g.expected;
+    d["reason"] = g.reason;
+    py::list modules;
+    if (g.exact)
+        for (const BigCount& c : g.modules) modules.append(pythonCount(c));
+    else
+        for (double v : g.expectedModules) modules.append(v);
+    d["modules"] = modules;
+    py::dict symbols;
+    for (std::size_t s = 0; s < g.symbolsAtEnd.size(); ++s)
+        if (!(g.symbolsAtEnd[s] == BigCount()))
+            symbols[py::str(h.model->lsystem.symbols.name(static_cast<Symbol>(s)))] =
+                pythonCount(g.symbolsAtEnd[s]);
+    d["symbols"] = symbols;
+    return d;
+}
+
+py::dict symbolDict(const SymbolTable& table, const std::vector<std::uint64_t>& counts) {
+    std::vector<std::pair<std::string, std::uint64_t>> present;
+    for (std::size_t s = 0; s < counts.size(); ++s)
+        if (counts[s]) present.emplace_back(table.name(static_cast<Symbol>(s)), counts[s]);
+    std::sort(present.begin(), present.end());
+    py::dict d;
+    for (const auto& [name, count] : present) d[py::str(name)] = count;
+    return d;
+}
+
+py::object boundsTuple(const Bounds& b) {
+    if (b.empty()) return py::none();
+    return py::make_tuple(py::make_tuple(b.min.x, b.min.y, b.min.z),
+                          py::make_tuple(b.max.x, b.max.y, b.max.z));
+}
+
+}  // namespace
+
+py::dict statisticsDict(const SymbolTable& table, const ModelStatistics& stats) {
+    py::dict d;
+    d["steps"] = stats.steps;
+    d["modules"] = stats.modules;
+    d["symbols"] = symbolDict(table, stats.symbolCounts);
+    if (stats.measured) {
+        d["segments"] = stats.segments;
+        d["polygons"] = stats.polygons;
+        d["bounds"] = boundsTuple(stats.bounds);
+    }
+    d["streamed"] = stats.streamed;
+    return d;
+}
+
+void bindModel(py::module_& m) {
+    py::class_<ModelHandle>(m, "Model",
+                            "A parsed L-system model: its grammar and how it is drawn. Made "
+                            "by graftal.load() or graftal.parse(); derive(), statistics(), "
+                            "predict() and export() run the library's pipeline on it.")
+        .def_property_readonly(
+            "name", [](const ModelHandle& h) { return h.model->lsystem.name; },
+            "the `Lsystem:` label (the file's name when there is none)")
+        .def_property_readonly(
+            "file", [](const ModelHandle& h) { return h.model->lsystem.file; },
+            "the file it was read from, as diagnostics name it")
+        .def_property_readonly(
+            "derivation_length",
+            [](const ModelHandle& h) { return h.model->lsystem.derivationLength; },
+            "the file's `derivation length:`, the steps derive() makes by default")
+        .def_property_readonly(
+            "defines", [](const ModelHandle& h) { return h.model->lsystem.defines; },
+            "the #define constants, name to text, after the overrides")
+        .def_property_readonly(
+            "symbols",
+            [](const ModelHandle& h) {
+                py::list names;
+                const SymbolTable& t = h.model->lsystem.symbols;
+                for (std::size_t s = 0; s < t.size(); ++s)
+                    names.append(t.name(static_cast<Symbol>(s)));
+                return names;
+            },
+            "every module name, indexed by symbol id (ModuleString.symbols' values)")
+        .def_property_readonly(
+            "warnings", [](const ModelHandle& h) { return diagnosticList(h.warnings); },
+            "the parse's warnings and notes (graftal.Diagnostic), returned, never printed")
+        .def(
+            "derive",
+            [](const ModelHandle& h, py::object steps, py::object seed, unsigned threads,
+               py::object memoryLimit, const std::string& precision, py::object environment) {
+                DerivedString d;
+                d.model = h.model;
+                d.source = h.source;
+                d.settings = deriveSettings(steps, seed, threads, memoryLimit, precision,
+                                            std::move(environment));
+                CancellationToken cancel;
+                const DeriveRequest request = deriveRequest(d.settings, cancel);
+                Derived derivedModel =
+                    interruptible(cancel, [&] { return derived(*h.model, request); });
+                d.steps = derivedModel.steps;
+                d.modules = std::move(derivedModel.modules);
+                return d;
+            },
+            py::arg("steps") = py::none(), py::kw_only(), py::arg("seed") = py::none(),
+            py::arg("threads") = 0u, py::arg("memory_limit") = py::none(),
+            py::arg("precision") = "single", py::arg("environment") = py::none(),
+            "Derives the model `steps` steps (default: its derivation length) and returns the "
+            "ModuleString. seed overrides the file's; threads=0 uses every core (the result "
+            "never depends on it); memory_limit (bytes, or '512M', default 2G) bounds the "
+            "strings; precision 'single' stores parameters as float32 (as cpfg), 'double' as "
+            "float64; environment answers ?E modules (see graftal.Environment). The GIL is "
+            "released; Ctrl-C stops it with KeyboardInterrupt.")
+        .def(
+            "statistics",
+            [](const ModelHandle& h, py::object steps, py::object seed, unsigned threads,
+               py::object memoryLimit, bool geometry, bool stream, py::object environment) {
+                const DeriveSettings settings = deriveSettings(steps, seed, threads, memoryLimit,
+                                                               "single", std::move(environment));
+                CancellationToken cancel;
+                DeriveRequest request = deriveRequest(settings, cancel);
+                if (stream) request.stream = StreamPolicy::Always;
+                const ModelStatistics stats =
+                    interruptible(cancel, [&] { return measured(*h.model, request, geometry); });
+                return statisticsDict(h.model->lsystem.symbols, stats);
+            },
+            py::arg("steps") = py::none(), py::kw_only(), py::arg("seed") = py::none(),
+            py::arg("threads") = 0u, py::arg("memory_limit") = py::none(),
+            py::arg("geometry") = true, py::arg("stream") = false,
+            py::arg("environment") = py::none(),
+            "What `graftal stats` reports, as a dict: steps, modules, symbols (count per "
+            "module name) and, with geometry, segments, polygons and bounds ((min xyz), "
+            "(max xyz)) measured without keeping the drawing; streamed says whether the "
+            "string was too large to hold and was measured as it streamed.")
+        .def("predict", &prediction, py::arg("steps") = py::none(),
+             "The module counts of every step computed from the productions, without "
+             "deriving: a dict with exact (counts are exact ints), expected (expected values "
+             "of a stochastic L-system), reason (why neither, when so), modules (one count "
+             "per step 0..steps) and symbols (exact counts per module at the last step).")
+        .def(
+            "export",
+            [](const ModelHandle& h, py::object path, py::object format, py::object steps,
+               py::object seed, unsigned threads, py::object memoryLimit, py::object environment,
+               py::object notes, py::kwargs options) -> py::object {
+                const DeriveSettings settings = deriveSettings(steps, seed, threads, memoryLimit,
+                                                               "single", std::move(environment));
+                CancellationToken cancel;
+                ExportRequest request;
+                static_cast<DeriveRequest&>(request) = deriveRequest(settings, cancel);
+                applyExportOptions(request, options);
+                if (!format.is_none()) {
+                    if (!py::isinstance<py::str>(format))
+                        throw py::type_error("format: expected a name such as 'png'");
+                    request.format = format.cast<std::string>();
+                }
+                std::string bytes;
+                const bool toMemory = path.is_none();
+                if (toMemory && request.format.empty())
+                    throw py::value_error("export(): name a format (format='png') or a path");
+                std::optional<Destination> destination;
+                if (toMemory) {
+                    const ExportFormat* f = findExportFormat(request.format);
+                    const std::string ext = f ? std::string(f->extension) : std::string();
+                    destination = Destination::memory(bytes, h.model->lsystem.name + ext);
+                } else {
+                    destination = Destination::file(pathText(path));
+                }
+                const ExportResult result = interruptible(
+                    cancel, [&] { return exportModel(*h.model, *destination, request); });
+                if (!notes.is_none()) {
+                    if (!py::isinstance<py::list>(notes))
+                        throw py::type_error("notes: expected a list");
+                    py::list list = notes.cast<py::list>();
+                    for (py::handle d : diagnosticList(result.notes)) list.append(d);
+                }
+                if (!toMemory) return py::none();
+                return py::bytes(bytes);
+            },
+            py::arg("path") = py::none(), py::kw_only(), py::arg("format") = py::none(),
+            py::arg("steps") = py::none(), py::arg("seed") = py::none(), py::arg("threads") = 0u,
+            py::arg("memory_limit") = py::none(), py::arg("environment") = py::none(),
+            py::arg("notes") = py::none(),
+            "Writes the model as `graftal render`, `animate` and `music` would, in any format "
+            "of graftal.export_formats(): to `path` (its extension names the format unless "
+            "format= does; written atomically) or, with no path, returned as bytes. Options "
+            "are the pipeline's request fields in snake_case: size=(w, h), line_width, margin, "
+            "background, line_color, view ('front', 'side', ...), viewpoint, target, up, "
+            "light, field_of_view, samples_per_pixel, ground, quality, tube_sides, spline, "
+            "kolam_dots, derivation_diagram, glb_instancing, glb_compression, first, last, "
+            "frames_per_step, fps, hold_seconds, turntable_degrees, stream. Notes and "
+            "warnings are appended to `notes` when it is a list.")
+        .def("with_defines", &withDefines, py::arg("defines"),
+             "The same model read again with these #define constants overridden too "
+             "({'R2': 0.8}); the overrides it was read with stay unless named again.")
+        .def_property_readonly(
+            "overrides", [](const ModelHandle& h) { return h.source->defines; },
+            "the #define overrides it was read with")
+        .def(py::pickle(&sourceState, &fromState))
+        .def("__str__",
+             [](const ModelHandle& h) {
+                 std::ostringstream os;
+                 os << *h.model;
+                 return os.str();
+             })
+        .def("__repr__", [](const ModelHandle& h) {
+            return "<graftal.Model '" + h.model->lsystem.name +
+                   "' derivation_length=" + std::to_string(h.model->lsystem.derivationLength) + ">";
+        });
+
+    m.def("load", &load, py::arg("path"), py::kw_only(), py::arg("defines") = py::none(),
+          py::arg("view") = py::none(),
+          "Reads a model: an .l file, or a model folder (its one .l file with its one .v "
+          "view file). defines overrides #define constants ({'N': 4}, as -D N=4); view names "
+          "a cpfg view file read after it. Raises graftal.ParseError when it does not parse; "
+          "its warnings are in Model.warnings.");
+    m.def("parse", &parseText, py::arg("text"), py::kw_only(), py::arg("file") = "",
+          py::arg("defines") = py::none(), py::arg("view_text") = py::none(),
+          py::arg("view_file") = "",
+          "Parses .l text (file names it in diagnostics and finds the files it names). "
+          "view_text is a view file's text read after it. Raises graftal.ParseError.");
+    m.def(
+        "export_formats",
+        [] {
+            py::list list;
+            for (const ExportFormat& f : exportFormats()) {
+                static const char* kinds[] = {"picture", "mesh", "animation", "music"};
+                py::dict d;
+                d["name"] = std::string(f.name);
+                d["extension"] = std::string(f.extension);
+                d["kind"] = kinds[static_cast<int>(f.kind)];
+                d["description"] = std::string(f.description);
+                d["binary"] = f.binary;
+                d["file_only"] = f.fileOnly;
+                list.append(d);
+            }
+            return list;
+        },
+        "Every format export() writes, from the library's registry: name, extension, kind "
+        "(picture, mesh, animation, music), description, binary, file_only (a folder, or "
+        "files beside it: a path is needed).");
+}
+
+}  // namespace graftal::python

@@ -1,0 +1,14 @@
+// The graftal extension module (graftal._graftal), which the package graftal (python/graftal/)
+// re-exports with its pure-Python helpers: the parts are bound in the order they refer to
+// each other.
+#include "bindings.hpp"
+
+PYBIND11_MODULE(_graftal, m) {
+    using namespace graftal::python;
+    m.doc() = "graftal's library: models, derivations, scenes, meshes and exports";
+    bindErrors(m);
+    bindModel(m);
+    bindModuleString(m);
+    bindDerivation(m);
+    bindGeometry(m);
+}
