@@ -1,6 +1,7 @@
 #include "graftal/core/module_string.hpp"
 
 #include "graftal/core/diagnostics.hpp"
+#include "graftal/core/number_chars.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -181,7 +182,7 @@ std::string formatNumber(double v) {
         auto r = std::to_chars(buf, buf + sizeof buf, static_cast<long long>(v));
         return std::string(buf, r.ptr);
     }
-    auto r = std::to_chars(buf, buf + sizeof buf, v);
+    auto r = numberToChars(buf, buf + sizeof buf, v);
     return std::string(buf, r.ptr);
 }
 
@@ -194,7 +195,7 @@ std::string formatSingle(float v) {
         auto r = std::to_chars(buf, buf + sizeof buf, static_cast<long long>(v));
         return std::string(buf, r.ptr);
     }
-    auto r = std::to_chars(buf, buf + sizeof buf, v);
+    auto r = numberToChars(buf, buf + sizeof buf, v);
     return std::string(buf, r.ptr);
 }
 
