@@ -30,21 +30,15 @@ Outcome run(bool limited, const std::string& source, const PreprocessOptions& op
     return o;
 }
 
-// The lines with text, blanks made one, each with the place its first word came from.
+// The lines with text, without blanks, each with the place its first word came from. mcpp
+// may put a blank between an operator and an expansion (`s/ 1.618` for `s/P`), which the
+// parser reads as it reads `s/1.618`.
 std::string described(const SourceText& t) {
     std::string out;
     for (const SourceLine& line : t.lines) {
         std::string words;
-        bool blank = false;
-        for (char c : line.text) {
-            if (c == ' ' || c == '\t' || c == '\r') {
-                blank = !words.empty();
-                continue;
-            }
-            if (blank) words += ' ';
-            blank = false;
-            words += c;
-        }
+        for (char c : line.text)
+            if (c != ' ' && c != '\t' && c != '\r') words += c;
         if (words.empty()) continue;
         const std::size_t first = line.text.find_first_not_of(" \t\r");
         const SourceLocation at = t.at(line.number, static_cast<int>(first) + 1);
