@@ -90,7 +90,7 @@ set_target_properties(graftal_engine PROPERTIES OUTPUT_NAME graftal-engine SUFFI
 # (web/src/load.js), so the same file loads in Node.js and in a browser's worker.
 target_link_options(graftal_engine PRIVATE ${GRAFTAL_WEB_FLAGS} --bind
   -sMODULARIZE=1 -sEXPORT_ES6=1 -sEXPORT_NAME=createGraftalEngine
-  -sENVIRONMENT=web,worker -sALLOW_MEMORY_GROWTH=1 -sMAXIMUM_MEMORY=2GB
+  -sENVIRONMENT=web,worker -sALLOW_MEMORY_GROWTH=1 -sMAXIMUM_MEMORY=4GB
   -sINITIAL_MEMORY=32MB -sFILESYSTEM=1 -sDISABLE_EXCEPTION_CATCHING=0
   # The built-in surfaces (leaf, petal), in the module's memory file system.
   --embed-file ${CMAKE_CURRENT_SOURCE_DIR}/surfaces@/graftal/surfaces)
