@@ -24,8 +24,17 @@ std::size_t roundToHugePages(std::size_t b) {
 }
 }  // namespace
 
+// WebAssembly has no pages to map: emscripten's mmap is malloc followed by a memset of the
+// whole block, the very cost the buffers' uninitialised resize avoids. There a large block
+// is allocated as a small one (fresh memory of a WebAssembly module is zero already).
+#ifdef __EMSCRIPTEN__
+constexpr bool kMapsLargeBlocks = false;
+#else
+constexpr bool kMapsLargeBlocks = true;
+#endif
+
 void* allocateLarge(std::size_t bytes) {
-    if (bytes < kLargeBlock) {
+    if (bytes < kLargeBlock || !kMapsLargeBlocks) {
         void* p = ::operator new(bytes == 0 ? 1 : bytes);
         return p;
     }
@@ -40,7 +49,7 @@ void* allocateLarge(std::size_t bytes) {
 
 void deallocateLarge(void* p, std::size_t bytes) noexcept {
     if (!p) return;
-    if (bytes < kLargeBlock) {
+    if (bytes < kLargeBlock || !kMapsLargeBlocks) {
         ::operator delete(p);
         return;
     }
