@@ -32,6 +32,14 @@ PYTHON_PACKAGES := python3-dev python3-numpy pybind11-dev python3-pybind11 pytho
                    python3-nbclient python3-nbformat python3-ipykernel python3-pandas \
                    python3-dask python3-distributed python3-scipy python3-matplotlib
 
+# The web build (docs/web.md): the engine in WebAssembly by Debian's emscripten, its npm
+# package and the studio as a static page in $(BUILD_DIR)/web. Debian's emscripten tools need
+# Debian's Node.js modules (acorn) on NODE_PATH, whichever node runs them.
+WEB_PACKAGES := emscripten
+WEB_BUILD_DIR ?= $(BUILD_DIR)/web-build
+WEB_JOBS ?= 2
+WEB_ENV := NODE_PATH=/usr/share/nodejs
+
 # The fuzzing build: Debian's clang and its libFuzzer runtime (libclang-rt-dev depends on
 # the default clang's libclang-rt-N-dev, which holds libclang_rt.fuzzer-x86_64.a). The whole
 # library is compiled with the sanitizers, through this folder's CMAKE_CXX_FLAGS.
@@ -42,7 +50,7 @@ FUZZ_PACKAGES := clang libclang-rt-dev
 FUZZ_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=undefined \
               -fsanitize=fuzzer-no-link -fno-omit-frame-pointer -g
 
-.PHONY: all deps configure build build-program test test-tools demo gallery bench clean fuzz-deps fuzz-build fuzz
+.PHONY: all deps configure build build-program test test-tools demo gallery bench clean fuzz-deps fuzz-build fuzz web-deps web bench-web
 
 all: build
 
@@ -80,8 +88,18 @@ test-tools: configure
 	  npm install --silent --no-audit --no-fund --prefix $(BUILD_DIR)/tools gltf-validator@2.0.0-dev.3.10 > /dev/null; \
 	fi
 
-test: build test-tools
+test: build test-tools web
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
+
+web-deps:
+	$(call install-missing,$(WEB_PACKAGES))
+
+# The engine (only the sources it needs, ccache in front of em++), its npm package and the
+# static page, all made by cmake/web.cmake into $(BUILD_DIR)/web.
+web: web-deps
+	@$(WEB_ENV) emcmake cmake -S . -B $(WEB_BUILD_DIR) -DGRAFTAL_WEB=ON -DCMAKE_BUILD_TYPE=Release \
+	  -DGRAFTAL_WEB_OUTPUT=$(abspath $(BUILD_DIR))/web > /dev/null
+	@$(WEB_ENV) cmake --build $(WEB_BUILD_DIR) -j $(WEB_JOBS)
 
 demo: build-program
 	@scripts/render_gallery.sh $(BUILD_DIR)/graftal gallery
@@ -90,6 +108,10 @@ gallery: demo
 
 bench: build
 	@bench/run.sh $(BUILD_DIR)
+
+# The WebAssembly engine in Node.js beside the npm package lindenmayer (docs/web.md).
+bench-web: web
+	@node bench/web_bench.mjs $(BUILD_DIR)
 
 fuzz-deps: deps
 	$(call install-missing,$(FUZZ_PACKAGES))

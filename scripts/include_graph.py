@@ -33,6 +33,8 @@ MAY_USE = {
                'core'],
     'cli': ['studio', 'pipeline', 'music', 'maps', 'output', 'turtle', 'rewrite', 'lang',
             'geometry', 'core'],
+    'web': ['studio', 'pipeline', 'music', 'maps', 'output', 'turtle', 'rewrite', 'lang',
+            'geometry', 'core'],
 }
 BEGIN = '<!-- include graph: made by scripts/include_graph.py --write -->'
 END = '<!-- end of the include graph -->'

@@ -1,6 +1,7 @@
 #include "graftal/core/module_string.hpp"
 
 #include "graftal/core/diagnostics.hpp"
+#include "graftal/core/number_chars.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -23,8 +24,17 @@ std::size_t roundToHugePages(std::size_t b) {
 }
 }  // namespace
 
+// WebAssembly has no pages to map: emscripten's mmap is malloc followed by a memset of the
+// whole block, the very cost the buffers' uninitialised resize avoids. There a large block
+// is allocated as a small one (fresh memory of a WebAssembly module is zero already).
+#ifdef __EMSCRIPTEN__
+constexpr bool kMapsLargeBlocks = false;
+#else
+constexpr bool kMapsLargeBlocks = true;
+#endif
+
 void* allocateLarge(std::size_t bytes) {
-    if (bytes < kLargeBlock) {
+    if (bytes < kLargeBlock || !kMapsLargeBlocks) {
         void* p = ::operator new(bytes == 0 ? 1 : bytes);
         return p;
     }
@@ -39,7 +49,7 @@ void* allocateLarge(std::size_t bytes) {
 
 void deallocateLarge(void* p, std::size_t bytes) noexcept {
     if (!p) return;
-    if (bytes < kLargeBlock) {
+    if (bytes < kLargeBlock || !kMapsLargeBlocks) {
         ::operator delete(p);
         return;
     }
@@ -181,7 +191,7 @@ std::string formatNumber(double v) {
         auto r = std::to_chars(buf, buf + sizeof buf, static_cast<long long>(v));
         return std::string(buf, r.ptr);
     }
-    auto r = std::to_chars(buf, buf + sizeof buf, v);
+    auto r = numberToChars(buf, buf + sizeof buf, v);
     return std::string(buf, r.ptr);
 }
 
@@ -194,7 +204,7 @@ std::string formatSingle(float v) {
         auto r = std::to_chars(buf, buf + sizeof buf, static_cast<long long>(v));
         return std::string(buf, r.ptr);
     }
-    auto r = std::to_chars(buf, buf + sizeof buf, v);
+    auto r = numberToChars(buf, buf + sizeof buf, v);
     return std::string(buf, r.ptr);
 }
 

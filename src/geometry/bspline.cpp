@@ -1,10 +1,10 @@
 // B-spline smoothing of turtle paths: the uniform cubic B-spline of a control polygon, and
 // the search for the chains of consecutive segments in a Scene whose points become the
 // control polygons (the book's Figures 2.10 and 2.11).
+#include "graftal/core/bit_cast.hpp"
 #include "graftal/geometry/bspline.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -59,9 +59,9 @@ struct PointKey {
 
 struct PointKeyHash {
     std::size_t operator()(const PointKey& k) const {
-        std::uint64_t h = std::bit_cast<std::uint64_t>(k.x);
-        h = h * 0x9E3779B97F4A7C15ull ^ std::bit_cast<std::uint64_t>(k.y);
-        h = h * 0x9E3779B97F4A7C15ull ^ std::bit_cast<std::uint64_t>(k.z);
+        std::uint64_t h = bitCast<std::uint64_t>(k.x);
+        h = h * 0x9E3779B97F4A7C15ull ^ bitCast<std::uint64_t>(k.y);
+        h = h * 0x9E3779B97F4A7C15ull ^ bitCast<std::uint64_t>(k.z);
         return static_cast<std::size_t>(h ^ (h >> 29));
     }
 };

@@ -12,6 +12,7 @@
 #include <system_error>
 
 #include "graftal/core/file_reading.hpp"
+#include "graftal/core/number_chars.hpp"
 #include "graftal/geometry/surface.hpp"
 
 #include <dlfcn.h>
@@ -225,7 +226,7 @@ class SurfaceParser {
         std::string_view digits = tok;
         if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
         double v = 0;
-        auto r = std::from_chars(digits.data(), digits.data() + digits.size(), v);
+        auto r = numberFromChars(digits.data(), digits.data() + digits.size(), v);
         if (digits.empty() || digits.front() == '+' || r.ec != std::errc() ||
             r.ptr != digits.data() + digits.size() || !std::isfinite(v))
             fail(pos_, "expected " + what + " (a number), found '" + std::string(tok) + "'");
@@ -388,6 +389,10 @@ Surface loadSurface(const std::filesystem::path& path) {
 }
 
 std::filesystem::path builtinSurfacesDirectory() {
+#ifdef GRAFTAL_BUILTIN_SURFACES_DIR
+    // The web build has its surfaces in the module's own file system (cmake/web.cmake).
+    return GRAFTAL_BUILTIN_SURFACES_DIR;
+#endif
     // Found from where the code is, not from a path fixed at build time, so that an
     // installed copy works wherever its prefix was put. The build tree links its own
     // share/graftal/surfaces to the source folder.

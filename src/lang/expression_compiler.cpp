@@ -3,6 +3,8 @@
 // without parameters or random numbers fold to constants.
 #include "graftal/lang/expression.hpp"
 
+#include "graftal/core/number_chars.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <charconv>
@@ -302,7 +304,7 @@ class ExpressionCompiler {
             }
         }
         double v = 0;
-        auto r = std::from_chars(text_.data() + start, text_.data() + pos_, v);
+        auto r = numberFromChars(text_.data() + start, text_.data() + pos_, v);
         if (r.ec != std::errc() || r.ptr != text_.data() + pos_) {
             fail(start,
                  "malformed number '" + std::string(text_.substr(start, pos_ - start)) + "'");

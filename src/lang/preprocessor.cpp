@@ -588,19 +588,6 @@ void readOutput(const std::string& output, const Workspace& ws, const std::strin
 
 }  // namespace
 
-bool needsPreprocessing(std::string_view text, const PreprocessOptions& options) {
-    if (!options.defines.empty()) return true;
-    std::size_t start = 0;
-    while (start <= text.size()) {
-        std::size_t end = text.find('\n', start);
-        if (end == std::string_view::npos) end = text.size();
-        std::size_t i = skipBlanks(text, start);
-        if (i < end && text[i] == '#') return true;
-        start = end + 1;
-    }
-    return false;
-}
-
 bool mcppComparesWithinNames() {
     std::lock_guard<std::mutex> lock(gMcppMutex);
     return gMcppCompareShielded;

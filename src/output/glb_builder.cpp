@@ -1,7 +1,9 @@
 // The .glb container and meshoptimizer's codecs for EXT_meshopt_compression.
 #include "glb_builder.hpp"
 
+#ifndef GRAFTAL_NO_MESHOPTIMIZER
 #include <meshoptimizer.h>
+#endif
 
 #include <array>
 #include <bit>
@@ -78,11 +80,13 @@ int Builder::addView(std::span<const unsigned char> plain, std::span<const unsig
 int Builder::addAttributeView(std::span<const unsigned char> bytes, std::size_t count,
                               std::size_t stride, int target, Filter filter, bool declareStride) {
     std::vector<unsigned char> encoded;
+#ifndef GRAFTAL_NO_MESHOPTIMIZER
     if (compress_) {
         encoded.resize(meshopt_encodeVertexBufferBound(count, stride));
         encoded.resize(meshopt_encodeVertexBuffer(encoded.data(), encoded.size(), bytes.data(),
                                                   count, stride));
     }
+#endif
     const int view = addView(bytes, encoded, count, stride, "ATTRIBUTES", target,
                              compress_ ? filter : Filter::None);
     if (declareStride) document_["bufferViews"][view]["byteStride"] = stride;
@@ -100,6 +104,7 @@ int Builder::addTriangleView(std::span<const std::uint32_t> indices, bool shortI
         std::memcpy(plain.data(), indices.data(), plain.size());
     }
     std::vector<unsigned char> encoded;
+#ifndef GRAFTAL_NO_MESHOPTIMIZER
     if (compress_) {
         std::uint32_t vertices = 0;
         for (std::uint32_t v : indices) vertices = std::max(vertices, v + 1);
@@ -107,6 +112,7 @@ int Builder::addTriangleView(std::span<const std::uint32_t> indices, bool shortI
         encoded.resize(meshopt_encodeIndexBuffer(encoded.data(), encoded.size(), indices.data(),
                                                  indices.size()));
     }
+#endif
     return addView(plain, encoded, indices.size(), shortIndices ? 2 : 4, "TRIANGLES",
                    kElementArrayBuffer, Filter::None);
 }

@@ -35,7 +35,13 @@ enum class Filter { None, Exponential, Octahedral };
 
 class Builder {
   public:
+#ifdef GRAFTAL_NO_MESHOPTIMIZER
+    // Without meshoptimizer (the web build) the buffers are stored plain: a valid glTF,
+    // only larger.
+    explicit Builder(bool) : compress_(false) {}
+#else
     explicit Builder(bool compress) : compress_(compress) {}
+#endif
 
     // Per-element data (vertex attributes, instance transforms): `count` elements of
     // `stride` bytes, a multiple of 4. `target` is a glTF buffer target, 0 for none. A

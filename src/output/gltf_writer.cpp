@@ -10,7 +10,9 @@
 // = false writes copies instead. Mirrored placements use a mirrored copy of their prototype
 // (instanced renderers do not rewind a mirrored instance's triangles); placements that are
 // not a rotation times a scale per axis (shear) are copied into the mesh.
+#ifndef GRAFTAL_NO_MESHOPTIMIZER
 #include <meshoptimizer.h>
+#endif
 
 #include <algorithm>
 #include <cmath>
@@ -160,6 +162,11 @@ class GltfDocument {
     // in that order: faster to draw, and the order meshopt's codecs compress best.
     json primitive(const Mesh& mesh, const mesh_file::GroupVertices& group, int materialIndex) {
         const std::size_t vertexCount = group.vertices.size();
+#ifdef GRAFTAL_NO_MESHOPTIMIZER
+        // The web build: the triangles and vertices in the mesher's order.
+        std::vector<std::uint32_t> indices(group.indices.begin(), group.indices.end());
+        std::vector<std::uint32_t> order(group.vertices.begin(), group.vertices.end());
+#else
         std::vector<std::uint32_t> indices(group.indices.size());
         meshopt_optimizeVertexCache(indices.data(), group.indices.data(), indices.size(),
                                     vertexCount);
@@ -168,6 +175,7 @@ class GltfDocument {
         meshopt_remapIndexBuffer(indices.data(), indices.data(), indices.size(), remap.data());
         std::vector<std::uint32_t> order(vertexCount);
         for (std::size_t v = 0; v < vertexCount; ++v) order[remap[v]] = group.vertices[v];
+#endif
 
         std::vector<float> positions;
         positions.reserve(3 * vertexCount);
@@ -214,6 +222,9 @@ class GltfDocument {
     // codec then finds the low bits zero. A vertex moves by at most 2^-14 of its largest
     // coordinate, or of 1 if that is smaller (4 mm at 60 m from the origin).
     int compressedPositions(const std::vector<float>& positions) {
+#ifdef GRAFTAL_NO_MESHOPTIMIZER
+        return plainPositions(positions);  // never compressing (glb::Builder)
+#else
         const std::size_t n = positions.size() / 3;
         std::vector<std::uint32_t> filtered(3 * n);
         meshopt_encodeFilterExp(filtered.data(), n, 12, kPositionBits, positions.data());
@@ -226,6 +237,7 @@ class GltfDocument {
             glb::kFloat, "VEC3", n);
         setBounds(accessor, stored);
         return accessor;
+#endif
     }
 
     int plainNormals(const Mesh& mesh, const std::vector<std::uint32_t>& order) {
@@ -244,6 +256,9 @@ class GltfDocument {
     // about a degree of error, invisible in shading, and a quarter of the floats' size
     // before the codec.
     int quantizedNormals(const Mesh& mesh, const std::vector<std::uint32_t>& order) {
+#ifdef GRAFTAL_NO_MESHOPTIMIZER
+        return plainNormals(mesh, order);  // never compressing (glb::Builder)
+#else
         std::vector<float> xyzw;
         xyzw.reserve(4 * order.size());
         for (std::uint32_t v : order) {
@@ -259,6 +274,7 @@ class GltfDocument {
             glb::kByte, "VEC3", order.size());
         builder_.document()["accessors"][accessor]["normalized"] = true;
         return accessor;
+#endif
     }
 
     const std::vector<Rgb>& palette_;

@@ -3,6 +3,7 @@
 #include <charconv>
 #include <string>
 
+#include "graftal/core/number_chars.hpp"
 #include "graftal/geometry/mesh.hpp"
 #include "graftal/output/output.hpp"
 #include "mesh_file.hpp"
@@ -32,7 +33,7 @@ class TextBuffer {
     template <class Number>
     TextBuffer& number(Number v) {
         char digits[32];
-        const auto r = std::to_chars(digits, digits + sizeof digits, v);
+        const auto r = numberToChars(digits, digits + sizeof digits, v);
         text_.append(digits, r.ptr);
         return flushIfFull();
     }

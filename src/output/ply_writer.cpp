@@ -3,11 +3,11 @@
 // colours is written once for each.
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <cstring>
 #include <limits>
 #include <string>
 
+#include "graftal/core/bit_cast.hpp"
 #include "graftal/geometry/mesh.hpp"
 #include "graftal/output/output.hpp"
 #include "mesh_file.hpp"
@@ -23,7 +23,7 @@ class BinaryBuffer {
 
     template <class T>
     void put(T v) {
-        auto word = std::bit_cast<std::array<char, sizeof(T)>>(v);
+        auto word = bitCast<std::array<char, sizeof(T)>>(v);
         if constexpr (std::endian::native == std::endian::big)
             std::reverse(word.begin(), word.end());
         bytes_.append(word.data(), word.size());

@@ -18,6 +18,7 @@
 #include <thread>
 
 #include "environment_detail.hpp"
+#include "graftal/core/number_chars.hpp"
 #include "graftal/lang/lsystem.hpp"
 #include "graftal/rewrite/environment.hpp"
 
@@ -37,7 +38,7 @@ std::string formatNumber(double v) {
     // Rotations leave 1e-17-sized noise where a component is 0; the program should see 0.
     if (std::fabs(v) < 1e-12) v = 0;
     char buf[32];
-    auto res = std::to_chars(buf, buf + sizeof buf, v);
+    auto res = numberToChars(buf, buf + sizeof buf, v);
     return std::string(buf, res.ptr);
 }
 
@@ -54,7 +55,7 @@ bool parseNumbers(std::string_view line, std::vector<double>& out, std::string& 
         std::string_view word = line.substr(start, i - start);
         std::string_view digits = word.front() == '+' ? word.substr(1) : word;
         double v = 0;
-        auto res = std::from_chars(digits.data(), digits.data() + digits.size(), v);
+        auto res = numberFromChars(digits.data(), digits.data() + digits.size(), v);
         if (digits.empty() || res.ec != std::errc() || res.ptr != digits.data() + digits.size() ||
             !std::isfinite(v)) {
             bad = std::string(word);

@@ -40,7 +40,10 @@ void put32(std::string& out, std::uint32_t v) {
 std::string storedZip(const std::vector<std::pair<std::string, std::string>>& files) {
     constexpr std::uint32_t kDosDate = (1980 - 1980) << 9 | 1 << 5 | 1;  // 1 January 1980
     std::string out, directory;
-    for (const auto& [name, bytes] : files) {
+    // Not a structured binding: clang 14 (the web build's) cannot capture one in a lambda.
+    for (const auto& file : files) {
+        const std::string& name = file.first;
+        const std::string& bytes = file.second;
         const std::uint32_t crc = crc32(bytes);
         const auto size = static_cast<std::uint32_t>(bytes.size());
         const auto offset = static_cast<std::uint32_t>(out.size());

@@ -2,11 +2,12 @@
 // measuring sinks add up over hundreds of millions of segments.
 #pragma once
 
-#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
+
+#include "graftal/core/bit_cast.hpp"
 
 namespace graftal::turtle {
 
@@ -19,8 +20,8 @@ class PlanarLength {
   public:
     double operator()(double dx, double dy) {
         if ((dx == 0) | (dy == 0)) return std::fabs(dx) + std::fabs(dy);
-        auto ax = std::bit_cast<std::uint64_t>(std::fabs(dx));
-        auto ay = std::bit_cast<std::uint64_t>(std::fabs(dy));
+        auto ax = bitCast<std::uint64_t>(std::fabs(dx));
+        auto ay = bitCast<std::uint64_t>(std::fabs(dy));
         Entry& e = entries_[slot(ax, ay)];
         if (e.ax != ax || e.ay != ay) e = {ax, ay, std::hypot(dx, dy)};
         return e.length;
@@ -28,8 +29,8 @@ class PlanarLength {
 
     // The remembered hypot(dx, dy) of two non-zero sides, or null.
     const double* find(double dx, double dy) const {
-        auto ax = std::bit_cast<std::uint64_t>(std::fabs(dx));
-        auto ay = std::bit_cast<std::uint64_t>(std::fabs(dy));
+        auto ax = bitCast<std::uint64_t>(std::fabs(dx));
+        auto ay = bitCast<std::uint64_t>(std::fabs(dy));
         const Entry& e = entries_[slot(ax, ay)];
         return e.ax == ax && e.ay == ay ? &e.length : nullptr;
     }

@@ -13,7 +13,6 @@
 
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <cmath>
 #include <functional>
 #include <span>
@@ -21,6 +20,7 @@
 #include <vector>
 
 #include "generalized_cylinder_track.hpp"
+#include "graftal/core/bit_cast.hpp"
 #include "graftal/core/vec3.hpp"
 #include "graftal/geometry/scene.hpp"
 #include "graftal/lang/lsystem.hpp"
@@ -285,7 +285,7 @@ class TurtleMachine {
     };
     const AngleMemo& cosSin(double degrees) {
         for (const AngleMemo& m : angles_)
-            if (std::bit_cast<std::uint64_t>(m.degrees) == std::bit_cast<std::uint64_t>(degrees))
+            if (bitCast<std::uint64_t>(m.degrees) == bitCast<std::uint64_t>(degrees))
                 return m;
         const double r = radians(degrees);
         AngleMemo& m = angles_[nextAngle_++ % angles_.size()];

@@ -1,5 +1,12 @@
-// The server's endpoints (docs/studio.md). Geometry arrives as binary: the derive answer is
-// a 4-byte JSON length, the JSON, padding to 4 bytes, then the line buffer or a PNG.
+// The engine behind the page, one interface for both: the server's endpoints (docs/studio.md)
+// for `graftal studio`, or the WebAssembly engine in a Web Worker for the static page
+// (engine_worker.js; docs/web.md), which answers with the same bytes. Geometry arrives as
+// binary: the derive answer is a 4-byte JSON length, the JSON, padding to 4 bytes, then the
+// line buffer or a PNG.
+import * as wasm from './engine_worker.js';
+
+// The static page's index.html says <html data-engine="wasm">.
+export const staticPage = typeof document !== 'undefined' && document.documentElement.dataset.engine === 'wasm';
 
 export const session = Math.random().toString(36).slice(2);
 
@@ -38,21 +45,25 @@ async function post(url, body) {
   return res;
 }
 
-export const listFiles = () => getJson('/api/files');
-export const readFile = (path) => getJson('/api/file?path=' + encodeURIComponent(path));
-export const info = () => getJson('/api/info');
+export const listFiles = () => (staticPage ? wasm.listFiles() : getJson('/api/files'));
+export const readFile = (path) =>
+  (staticPage ? wasm.readFile(path) : getJson('/api/file?path=' + encodeURIComponent(path)));
+export const info = () => (staticPage ? wasm.info() : getJson('/api/info'));
 
 export async function writeFile(path, text) {
+  if (staticPage) return wasm.writeFile(path, text);
   const res = await call('/api/file?path=' + encodeURIComponent(path), { method: 'PUT', body: text });
   if (!res.ok) throw await failure(res);
   return res.json();
 }
 
 export async function watch(path, since) {
+  if (staticPage) return wasm.watch(path, since);
   return getJson('/api/watch?path=' + encodeURIComponent(path) + '&since=' + since);
 }
 
 export async function parse(model) {
+  if (staticPage) return (await derive(model)).meta.report;
   return (await post('/api/parse', model)).json();
 }
 
@@ -61,16 +72,25 @@ export async function parse(model) {
 // page's clock, performance.now()).
 export async function derive(model) {
   const sent = performance.now();
+  if (staticPage) {
+    const buffer = await wasm.derive({ session, ...model });
+    const done = performance.now();
+    return decodeDerive(buffer, { sent, headers: done, body: done });
+  }
   const res = await post('/api/derive', model);
   const headers = performance.now();
   const buffer = await res.arrayBuffer();
   const body = performance.now();
+  return decodeDerive(buffer, { sent, headers, body });
+}
+
+function decodeDerive(buffer, times) {
   const length = new DataView(buffer).getUint32(0, true);
   const meta = JSON.parse(new TextDecoder().decode(new Uint8Array(buffer, 4, length)));
   let start = 4 + length;
   start += (4 - (start % 4)) % 4;
   const bytes = buffer.byteLength;
-  const result = { meta, bytes, times: { sent, headers, body } };
+  const result = { meta, bytes, times };
   if (meta.geometry === 'png') result.png = new Blob([buffer.slice(start)], { type: 'image/png' });
   else if (meta.geometry === 'lines') result.lines = decodeLines(buffer, start);
   result.times.decoded = performance.now();
@@ -142,11 +162,13 @@ export function segmentPoints(l) {
 }
 
 export async function mesh(model) {
+  if (staticPage) return wasm.mesh({ session, ...model });
   return (await post('/api/mesh', model)).arrayBuffer();
 }
 
 // {blob, name}: the name the server gives the download (an OBJ comes as NAME-obj.zip).
 export async function exportFile(model, format) {
+  if (staticPage) return wasm.exportFile({ session, ...model }, format);
   const res = await post('/api/export', { ...model, format });
   const name = /filename="([^"]+)"/.exec(res.headers.get('Content-Disposition') || '')?.[1];
   return { blob: await res.blob(), name };

@@ -31,7 +31,8 @@ const observer = new IntersectionObserver((entries) => {
   }
 });
 
-export function showFiles(files, open) {
+// `thumbnails`: false on the static page, which has no server to draw them.
+export function showFiles(files, open, thumbnails = true) {
   const list = document.getElementById('file-list');
   const rows = files.map((f) => {
     const row = document.createElement('div');
@@ -40,8 +41,12 @@ export function showFiles(files, open) {
     row.title = f.path;
     const img = document.createElement('img');
     img.alt = '';
-    img.dataset.src = '/api/thumbnail?path=' + encodeURIComponent(f.path);
-    observer.observe(img);
+    if (thumbnails) {
+      img.dataset.src = '/api/thumbnail?path=' + encodeURIComponent(f.path);
+      observer.observe(img);
+    } else {
+      img.hidden = true;
+    }
     const name = document.createElement('span');
     name.textContent = f.path.replace(/\.l$/, '');
     row.append(img, name);

@@ -9,6 +9,7 @@ import { View2D } from './view2d.js';
 import { View3D } from './view3d.js';
 import { showFiles, markCurrent, refreshThumbnail, holdThumbnails } from './files_panel.js';
 import { showDefines, writeBackChanges } from './defines_panel.js';
+import { shareLink, sharedModel } from './share_link.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -282,9 +283,9 @@ function setText(t) {
   state.loading = false;
 }
 
-async function openFile(path) {
+async function openFile(path, given = null) {
   await saveNow();
-  const f = await api.readFile(path);
+  const f = given || await api.readFile(path);
   Object.assign(state, { path, mtime: f.mtime, savedText: f.text, steps: null, overrides: {}, fitNext: true });
   view3d.fitted = false;
   $('file-name').textContent = path;
@@ -340,13 +341,7 @@ async function exportAs(format) {
   $('note').textContent = `exporting ${format}…`;
   try {
     const { blob, name } = await api.exportFile(modelBody(), format);
-    const a = document.createElement('a');
-    a.href = URL.createObjectURL(blob);
-    a.download = name || (state.path || 'untitled.l').split('/').pop().replace(/\.l$/, '') + '.' + format;
-    document.body.append(a);
-    a.click();
-    a.remove();
-    setTimeout(() => URL.revokeObjectURL(a.href), 10000);
+    download(blob, name || (state.path || 'untitled.l').split('/').pop().replace(/\.l$/, '') + '.' + format);
     $('note').textContent = '';
   } catch (e) {
     $('note').textContent = `export ${format}: ${e.message}`;
@@ -380,6 +375,7 @@ function exportMenu(formats) {
     option.title = f.description;
     groups.get(f.kind).append(option);
   }
+  more.hidden = groups.size === 0;
 }
 $('export-more').addEventListener('change', (e) => {
   const format = e.target.value;
@@ -389,12 +385,54 @@ $('export-more').addEventListener('change', (e) => {
 
 window.addEventListener('beforeunload', () => { if (text() !== state.savedText) saveNow(); });
 
+// ---- the static page's files: open from disk, save as a download, share as a link ----
+
+function download(blob, name) {
+  const a = document.createElement('a');
+  a.href = URL.createObjectURL(blob);
+  a.download = name;
+  document.body.append(a);
+  a.click();
+  a.remove();
+  setTimeout(() => URL.revokeObjectURL(a.href), 10000);
+}
+
+function staticControls() {
+  for (const e of document.querySelectorAll('.static-only')) e.hidden = false;
+  for (const e of document.querySelectorAll('.server-only')) e.hidden = true;
+  $('open-file').addEventListener('click', () => $('open-input').click());
+  $('open-input').addEventListener('change', async (e) => {
+    const file = e.target.files[0];
+    if (!file) return;
+    const text = await file.text();
+    await api.writeFile(file.name, text);
+    await openFile(file.name, { text, mtime: 0 });
+  });
+  $('save-file').addEventListener('click', () =>
+    download(new Blob([text()], { type: 'text/plain' }), editedName()));
+  $('share').addEventListener('click', async () => {
+    const link = await shareLink(text(), editedName());
+    $('share-url').value = link;
+    try { await navigator.clipboard.writeText(link); $('note').textContent = 'link copied'; } catch { /* shown in the field */ }
+  });
+}
+
 // ---- start -------------------------------------------------------------------------
 
 async function start() {
   const [meta, list] = await Promise.all([api.info(), api.listFiles()]);
   exportMenu(meta.formats || []);
-  showFiles(list.files, openFile);
+  showFiles(list.files, openFile, !api.staticPage);
+  if (api.staticPage) {
+    staticControls();
+    const shared = await sharedModel().catch(() => null);
+    if (shared) {
+      await api.writeFile(shared.name, shared.text);
+      await openFile(shared.name, { text: shared.text, mtime: 0 });
+      document.body.dataset.ready = 'true';
+      return;
+    }
+  }
   const wanted = decodeURIComponent(location.hash.slice(1));
   const first = list.files.find((f) => f.path === wanted) || list.files.find((f) => f.path === meta.onlyFile) || list.files[0];
   if (first) await openFile(first.path);

@@ -1,0 +1,153 @@
+# The web build (docs/web.md): the engine compiled to WebAssembly by Debian's emscripten,
+# configured with `emcmake cmake -DGRAFTAL_WEB=ON` (`make web` does). It compiles the
+# layers that need no native library; the writers and tools that do (Cairo, Embree, giflib,
+# libwebp, FFmpeg, libsmf, FluidSynth, LilyPond, meshoptimizer, mcpp, cpp-httplib) stay
+# out, and their entry points are src/web/native_only.cpp, which says so in an Error. The
+# export registry keeps its one table: its native rows throw that Error in this build.
+if(NOT EMSCRIPTEN)
+  message(FATAL_ERROR "GRAFTAL_WEB needs emscripten: configure with `emcmake cmake` "
+                      "(make web does)")
+endif()
+
+# nlohmann/json is header-only: Debian's own headers, seen without the rest of /usr/include
+# (whose glibc headers are not emscripten's).
+set(GRAFTAL_WEB_JSON ${CMAKE_BINARY_DIR}/json-include)
+file(MAKE_DIRECTORY ${GRAFTAL_WEB_JSON})
+if(NOT EXISTS ${GRAFTAL_WEB_JSON}/nlohmann)
+  find_path(GRAFTAL_JSON_DIR nlohmann/json.hpp PATHS /usr/include NO_CMAKE_FIND_ROOT_PATH)
+  if(NOT GRAFTAL_JSON_DIR)
+    message(FATAL_ERROR "nlohmann/json.hpp not found: install nlohmann-json3-dev")
+  endif()
+  file(CREATE_LINK ${GRAFTAL_JSON_DIR}/nlohmann ${GRAFTAL_WEB_JSON}/nlohmann SYMBOLIC)
+endif()
+
+set(GRAFTAL_WEB_SOURCES
+  # core
+  src/core/diagnostics.cpp src/core/module_string.cpp src/core/vec3.cpp src/core/rgb.cpp
+  src/core/atomic_file.cpp src/core/destination.cpp src/core/file_format.cpp
+  src/core/cancellation.cpp src/core/music_scale.cpp src/core/xml_text.cpp
+  src/core/file_reading.cpp src/core/thread_pool.cpp src/core/number_chars.cpp
+  # lang (the limited preprocessor in place of mcpp)
+  src/lang/expression_compiler.cpp src/lang/expression_vm.cpp src/lang/expression_builtins.cpp
+  src/lang/expression_printf.cpp src/lang/source_text.cpp src/lang/module_lexer.cpp
+  src/lang/parser.cpp src/lang/production_parser.cpp src/lang/statement_parser.cpp
+  src/lang/view_parser.cpp src/lang/view_file.cpp src/lang/lsystem.cpp src/lang/model.cpp
+  src/lang/model_builder.cpp src/lang/view_settings.cpp src/lang/view_setting_lookup.cpp
+  src/lang/limited_preprocessor.cpp src/lang/graphical_function.cpp
+  src/lang/contour_file.cpp src/lang/curve_xyz.cpp src/lang/curve_setting.cpp
+  # rewrite
+  src/rewrite/bracket_index.cpp src/rewrite/rewriting_engine.cpp
+  src/rewrite/rewriting_generic.cpp src/rewrite/context_rewriter.cpp
+  src/rewrite/derivation.cpp src/rewrite/growth_prediction.cpp src/rewrite/streaming.cpp
+  src/rewrite/output_files.cpp src/rewrite/environment.cpp
+  src/rewrite/environment_obstacles.cpp src/rewrite/environment_occupancy.cpp
+  src/rewrite/environment_process.cpp
+  # geometry
+  src/geometry/scene.cpp src/geometry/kolam_dots.cpp src/geometry/mesh.cpp
+  src/geometry/mesh_scene.cpp src/geometry/mesh_scene_builder.cpp
+  src/geometry/surface_mesher.cpp src/geometry/polygon_instancing.cpp
+  src/geometry/tube_mesher.cpp src/geometry/polygon_triangulation.cpp
+  src/geometry/surface_file.cpp src/geometry/bezier_patch.cpp src/geometry/bspline.cpp
+  src/geometry/color_map.cpp src/geometry/material_file.cpp src/geometry/projection.cpp
+  src/geometry/round_shapes.cpp src/geometry/contour_points.cpp
+  src/geometry/generalized_cylinder.cpp
+  # maps
+  src/maps/map_parser.cpp src/maps/map_derivation.cpp src/maps/map_relaxation.cpp
+  src/maps/map_outline.cpp src/maps/map_checks.cpp src/maps/map_text.cpp
+  src/maps/map_drawing.cpp
+  # turtle
+  src/turtle/turtle.cpp src/turtle/streamed_interpretation.cpp
+  src/turtle/subtree_summaries.cpp src/turtle/planar_measure.cpp
+  src/turtle/polyline_turtle.cpp
+  # output: SVG, OBJ, PLY, glTF (no Cairo, Embree, encoders)
+  src/output/image_transform.cpp src/output/svg_writer.cpp src/output/derivation_diagram.cpp
+  src/output/obj_writer.cpp src/output/ply_writer.cpp src/output/gltf_writer.cpp
+  src/output/mesh_scene_writers.cpp src/output/glb_builder.cpp
+  src/output/instance_transform.cpp src/output/image_file.cpp
+  # music: the score and its text notations
+  src/music/score.cpp src/music/notation.cpp src/music/musicxml_writer.cpp
+  # pipeline
+  src/pipeline/stream_choice.cpp src/pipeline/stages.cpp src/pipeline/statistics.cpp
+  src/pipeline/export_registry.cpp src/pipeline/render.cpp src/pipeline/module_ages.cpp
+  src/pipeline/mesh_quality.cpp
+  # the studio's computations (no server)
+  src/studio/studio_model.cpp src/studio/line_buffer.cpp src/studio/zip_archive.cpp
+  # the web front end
+  src/web/native_only.cpp src/web/engine.cpp)
+
+set(GRAFTAL_WEB_FLAGS -fexceptions -Oz)
+add_executable(graftal_engine ${GRAFTAL_WEB_SOURCES})
+target_include_directories(graftal_engine PRIVATE include src)
+target_include_directories(graftal_engine SYSTEM PRIVATE ${GRAFTAL_WEB_JSON})
+target_compile_definitions(graftal_engine PRIVATE GRAFTAL_NO_MCPP GRAFTAL_NO_MESHOPTIMIZER
+  GRAFTAL_SURFACES_FROM_LIBDIR="" GRAFTAL_SURFACES_FROM_BINDIR="")
+set_source_files_properties(src/geometry/surface_file.cpp PROPERTIES
+  COMPILE_DEFINITIONS GRAFTAL_BUILTIN_SURFACES_DIR="/graftal/surfaces")
+target_compile_options(graftal_engine PRIVATE ${GRAFTAL_WARNINGS} ${GRAFTAL_WEB_FLAGS})
+set_target_properties(graftal_engine PROPERTIES OUTPUT_NAME graftal-engine SUFFIX ".js"
+  RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/engine)
+# An ES module exporting a factory; the package and the page hand it the .wasm's bytes
+# (web/src/load.js), so the same file loads in Node.js and in a browser's worker.
+target_link_options(graftal_engine PRIVATE ${GRAFTAL_WEB_FLAGS} --bind
+  -sMODULARIZE=1 -sEXPORT_ES6=1 -sEXPORT_NAME=createGraftalEngine
+  -sENVIRONMENT=web,worker -sALLOW_MEMORY_GROWTH=1 -sMAXIMUM_MEMORY=4GB
+  -sINITIAL_MEMORY=32MB -sFILESYSTEM=1 -sDISABLE_EXCEPTION_CATCHING=0
+  # The built-in surfaces (leaf, petal), in the module's memory file system.
+  --embed-file ${CMAKE_CURRENT_SOURCE_DIR}/surfaces@/graftal/surfaces)
+
+# ---- the npm package and the static page ----------------------------------------------
+# GRAFTAL_WEB_OUTPUT (build/web from `make web`): the page, and the package in package/.
+if(NOT GRAFTAL_WEB_OUTPUT)
+  set(GRAFTAL_WEB_OUTPUT ${CMAKE_BINARY_DIR}/web)
+endif()
+find_program(GRAFTAL_NODE node NO_CMAKE_FIND_ROOT_PATH)
+find_program(GRAFTAL_NPM npm NO_CMAKE_FIND_ROOT_PATH)
+if(NOT GRAFTAL_NODE OR NOT GRAFTAL_NPM)
+  message(FATAL_ERROR "the web build's page needs Node.js and npm (`make deps` installs them)")
+endif()
+
+# The studio's npm packages (its lockfile), for esbuild and the page's libraries.
+set(GRAFTAL_WEB_NODE ${CMAKE_BINARY_DIR}/studio-node)
+set(studio_src ${CMAKE_CURRENT_SOURCE_DIR}/studio)
+file(MAKE_DIRECTORY ${GRAFTAL_WEB_NODE})
+add_custom_command(
+  OUTPUT ${GRAFTAL_WEB_NODE}/npm-ci.stamp
+  COMMAND ${CMAKE_COMMAND} -E copy ${studio_src}/package.json ${studio_src}/package-lock.json
+          ${GRAFTAL_WEB_NODE}
+  COMMAND ${GRAFTAL_NPM} ci --no-audit --no-fund --loglevel=error
+  COMMAND ${CMAKE_COMMAND} -E touch ${GRAFTAL_WEB_NODE}/npm-ci.stamp
+  WORKING_DIRECTORY ${GRAFTAL_WEB_NODE}
+  DEPENDS ${studio_src}/package.json ${studio_src}/package-lock.json
+  COMMENT "Installing the studio's npm packages (package-lock.json)")
+
+# The worker imports the package by its name: `graftal` is the assembled package.
+set(GRAFTAL_WEB_MODULES ${CMAKE_BINARY_DIR}/web-modules)
+file(MAKE_DIRECTORY ${GRAFTAL_WEB_MODULES} ${GRAFTAL_WEB_OUTPUT}/package)
+file(REMOVE ${GRAFTAL_WEB_MODULES}/graftal)
+file(CREATE_LINK ${GRAFTAL_WEB_OUTPUT}/package ${GRAFTAL_WEB_MODULES}/graftal SYMBOLIC)
+
+file(GLOB GRAFTAL_STUDIO_SOURCES CONFIGURE_DEPENDS ${studio_src}/src/*.js)
+file(GLOB GRAFTAL_EXAMPLES CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/examples/*.l)
+set(esbuild ${CMAKE_COMMAND} -E env
+  NODE_PATH=${GRAFTAL_WEB_NODE}/node_modules:${GRAFTAL_WEB_MODULES}
+  ${GRAFTAL_WEB_NODE}/node_modules/.bin/esbuild --bundle --minify --format=esm
+  --log-level=warning)
+add_custom_command(
+  OUTPUT ${GRAFTAL_WEB_OUTPUT}/index.html ${GRAFTAL_WEB_OUTPUT}/studio.js
+         ${GRAFTAL_WEB_OUTPUT}/worker.js ${GRAFTAL_WEB_OUTPUT}/package/index.js
+  COMMAND ${GRAFTAL_NODE} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/web_page.mjs
+          ${CMAKE_CURRENT_SOURCE_DIR} $<TARGET_FILE_DIR:graftal_engine> ${GRAFTAL_WEB_OUTPUT}
+  COMMAND ${esbuild} ${studio_src}/src/main.js --target=es2020
+          --outfile=${GRAFTAL_WEB_OUTPUT}/studio.js
+  # The worker awaits the engine at its top level (ES2022).
+  # (its Node.js branch, which reads the .wasm from disk, is left to Node.js)
+  COMMAND ${esbuild} ${studio_src}/src/worker.js --target=es2022 --external:node:*
+          --outfile=${GRAFTAL_WEB_OUTPUT}/worker.js
+  DEPENDS graftal_engine ${GRAFTAL_STUDIO_SOURCES} ${studio_src}/index.html
+          ${studio_src}/studio.css ${GRAFTAL_EXAMPLES} ${GRAFTAL_WEB_NODE}/npm-ci.stamp
+          ${CMAKE_CURRENT_SOURCE_DIR}/scripts/web_page.mjs
+          ${CMAKE_CURRENT_SOURCE_DIR}/web/index.js ${CMAKE_CURRENT_SOURCE_DIR}/web/engine.js
+          ${CMAKE_CURRENT_SOURCE_DIR}/web/index.d.ts
+          ${CMAKE_CURRENT_SOURCE_DIR}/web/package.json ${CMAKE_CURRENT_SOURCE_DIR}/web/README.md
+  COMMENT "Assembling the npm package and the static studio page in ${GRAFTAL_WEB_OUTPUT}")
+add_custom_target(graftal_web_page ALL DEPENDS ${GRAFTAL_WEB_OUTPUT}/index.html)

@@ -1,0 +1,34 @@
+// Assembles the web build's static folder (docs/web.md) after the engine is linked:
+//   node scripts/web_page.mjs SOURCE_DIR ENGINE_DIR OUT_DIR
+// - OUT_DIR/package: the npm package (web/ with the engine's .js and .wasm);
+// - OUT_DIR: the studio's page for the WebAssembly engine: index.html (the studio's, marked
+//   data-engine="wasm", with relative addresses so that any folder of a static server
+//   serves it), studio.css, the .wasm, and examples.json (the book's examples by name).
+// The bundles (studio.js, worker.js) are made by esbuild afterwards (cmake/web.cmake).
+import fs from 'node:fs';
+import path from 'node:path';
+
+const [sourceDir, engineDir, outDir] = process.argv.slice(2);
+const pkg = path.join(outDir, 'package');
+fs.mkdirSync(pkg, { recursive: true });
+for (const f of ['index.js', 'engine.js', 'index.d.ts', 'package.json', 'README.md'])
+  fs.copyFileSync(path.join(sourceDir, 'web', f), path.join(pkg, f));
+for (const f of ['graftal-engine.js', 'graftal-engine.wasm']) {
+  fs.copyFileSync(path.join(engineDir, f), path.join(pkg, f));
+}
+fs.copyFileSync(path.join(engineDir, 'graftal-engine.wasm'), path.join(outDir, 'graftal-engine.wasm'));
+
+const html = fs.readFileSync(path.join(sourceDir, 'studio', 'index.html'), 'utf8')
+  .replace('<html lang="en">', '<html lang="en" data-engine="wasm">')
+  .replace('href="/studio.css"', 'href="studio.css"')
+  .replace('src="/studio.js"', 'src="studio.js"');
+if (!html.includes('data-engine="wasm"') || html.includes('"/studio.js"'))
+  throw new Error('studio/index.html changed: the static page cannot be made from it');
+fs.writeFileSync(path.join(outDir, 'index.html'), html);
+fs.copyFileSync(path.join(sourceDir, 'studio', 'studio.css'), path.join(outDir, 'studio.css'));
+
+const examples = {};
+const dir = path.join(sourceDir, 'examples');
+for (const name of fs.readdirSync(dir).sort())
+  if (name.endsWith('.l')) examples[name] = fs.readFileSync(path.join(dir, name), 'utf8');
+fs.writeFileSync(path.join(outDir, 'examples.json'), JSON.stringify(examples));
