@@ -123,7 +123,8 @@ TEST(ViewFile, ABadValueIsAWarningAtItsColumnAndTheSettingKeepsItsDefault) {
     EXPECT_EQ(r.warnings()[0].location.line, 1);
     EXPECT_EQ(r.warnings()[0].location.column, 13);
     EXPECT_EQ(r.warnings()[1].location.line, 2);
-    EXPECT_DOUBLE_EQ(r.model.view.turtle.angleDegrees, ViewSettings{}.turtle.angleDegrees)
+    const double defaultTurn = loadWithView(dir, kPlant, "\n").model.view.turtle.angleDegrees;
+    EXPECT_DOUBLE_EQ(r.model.view.turtle.angleDegrees, defaultTurn)
         << "'angle increment: ?' leaves the default turn";
     const Model m = std::move(r).orThrow();
     EXPECT_EQ(derive(m.lsystem).size(), 9u) << "the model derives all the same";
