@@ -117,7 +117,8 @@ TEST(ViewFile, ABadValueIsAWarningAtItsColumnAndTheSettingKeepsItsDefault) {
     ASSERT_EQ(r.warnings().size(), 1u) << messages(r.diagnostics);
     EXPECT_NE(r.warnings()[0].message.find("three numbers"), std::string::npos);
 
-    r = loadWithView(dir, kPlant, "projection: fisheye\nangle increment: ?\nline style: wireframe\n");
+    r = loadWithView(dir, kPlant,
+                     "projection: fisheye\nangle increment: ?\nline style: wireframe\n");
     ASSERT_TRUE(r.ok()) << messages(r.diagnostics);
     ASSERT_GE(r.warnings().size(), 2u) << messages(r.diagnostics);
     EXPECT_EQ(r.warnings()[0].location.line, 1);

@@ -193,8 +193,8 @@ bool definesMacro(std::string_view text, const std::string& name) {
     for (std::size_t at = text.find(key); at != std::string_view::npos;
          at = text.find(key, at + 1)) {
         const std::size_t after = at + key.size();
-        if (after >= text.size() || !(std::isalnum(static_cast<unsigned char>(text[after])) ||
-                                      text[after] == '_'))
+        if (after >= text.size() ||
+            !(std::isalnum(static_cast<unsigned char>(text[after])) || text[after] == '_'))
             return true;
     }
     return false;
@@ -220,11 +220,11 @@ void defineFunctionSetNames(std::string_view text, std::string_view viewText,
     for (std::size_t i = 0; i < functions.size(); ++i) {
         std::string macro = functions[i].name();
         if (macro.size() > 5 && macro.ends_with(".func")) macro.resize(macro.size() - 5);
-        const bool identifier =
-            !macro.empty() && !std::isdigit(static_cast<unsigned char>(macro[0])) &&
-            std::all_of(macro.begin(), macro.end(), [](char c) {
-                return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
-            });
+        const bool identifier = !macro.empty() &&
+                                !std::isdigit(static_cast<unsigned char>(macro[0])) &&
+                                std::all_of(macro.begin(), macro.end(), [](char c) {
+                                    return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+                                });
         if (!identifier || options.defines.count(macro)) continue;
         if (definesMacro(text, macro)) continue;
         options.defines[macro] = std::to_string(i + 1);

@@ -44,8 +44,8 @@ std::string_view trimView(std::string_view s) {
 // then the view settings a .l file states (from their table), then the global blocks.
 const std::vector<std::string> kKeywords = [] {
     std::vector<std::string> k = {
-        "lsystem", "derivation length", "axiom", "ignore",         "consider",    "age",
-        "seed",    "random",    "maximum depth",     "table", "table schedule", "environment",
+        "lsystem", "derivation length", "axiom", "ignore",         "consider",    "age", "seed",
+        "random",  "maximum depth",     "table", "table schedule", "environment",
     };
     for (const auto& name : lFileSettingNames()) k.push_back(name);
     for (const char* block : {"start", "starteach", "endeach", "end", "define"}) k.push_back(block);
@@ -431,12 +431,13 @@ void Parser::parseDirective(const SourceLine& line, const std::string& kw, std::
     } else if (kw == "random") {
         std::string_view word = trimView(std::string_view(line.text).substr(valueStart));
         if (word != "cpfg" && word != "graftal") {
-            diags_.error(loc, "random: expects 'cpfg' (cpfg's generators, in cpfg's order) or "
-                              "'graftal' (graftal's streams), not '" + std::string(word) + "'");
+            diags_.error(loc,
+                         "random: expects 'cpfg' (cpfg's generators, in cpfg's order) or "
+                         "'graftal' (graftal's streams), not '" +
+                             std::string(word) + "'");
             return;
         }
-        target_.randomStreams(word == "cpfg" ? RandomStreams::Cpfg : RandomStreams::Graftal,
-                              loc);
+        target_.randomStreams(word == "cpfg" ? RandomStreams::Cpfg : RandomStreams::Graftal, loc);
     } else if (kw == "seed") {
         if (!constantValue(line, valueStart, v)) return;
         // 2^64 is the first double above the largest uint64_t.

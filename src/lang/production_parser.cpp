@@ -20,7 +20,8 @@ bool Parser::parsePatterns(const SourceLine& line, std::size_t from, std::size_t
     }
     std::vector<ModuleToken> toks;
     SourceLocation loc = at(line, from);
-    if (!tokenizeModules(part, loc, static_cast<int>(from) + 1, target_.symbols(), toks, diags_, surfaceLetters_))
+    if (!tokenizeModules(part, loc, static_cast<int>(from) + 1, target_.symbols(), toks, diags_,
+                         surfaceLetters_))
         return false;
     for (auto& t : toks) {
         ModulePattern p;

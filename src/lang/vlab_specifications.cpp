@@ -18,7 +18,8 @@ std::vector<std::string> words(std::string_view line) {
         if (i >= line.size()) break;
         std::string word;
         bool quoted = false;
-        while (i < line.size() && (quoted || (line[i] != ' ' && line[i] != '\t' && line[i] != '\r'))) {
+        while (i < line.size() &&
+               (quoted || (line[i] != ' ' && line[i] != '\t' && line[i] != '\r'))) {
             if (line[i] == '"')
                 quoted = !quoted;
             else
@@ -37,10 +38,9 @@ bool endsWith(const std::string& s, std::string_view tail) {
 // cpfg's options that take arguments, and how many (cpfg's command-line reader).
 int argumentsOf(const std::string& option) {
     if (option == "-w" || option == "-wr" || option == "-wp" || option == "-wpr") return 2;
-    if (option == "-m" || option == "-m1" || option == "-m2" || option == "-m3" ||
-        option == "-M" || option == "-e" || option == "-P" || option == "-str" ||
-        option == "-rgb" || option == "-ray" || option == "-homo" || option == "-d" ||
-        option == "-c")
+    if (option == "-m" || option == "-m1" || option == "-m2" || option == "-m3" || option == "-M" ||
+        option == "-e" || option == "-P" || option == "-str" || option == "-rgb" ||
+        option == "-ray" || option == "-homo" || option == "-d" || option == "-c")
         return 1;
     return 0;
 }

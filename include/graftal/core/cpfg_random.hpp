@@ -81,8 +81,8 @@ class CpfgRandom {
     // Beta-distributed in (0, 1) (Cheng's rejection method, as cpfg computes it).
     double bran(double a, double b) {
         const double s = a + b;
-        const double lambda = std::min(a, b) <= 1 ? std::min(a, b)
-                                                  : std::sqrt((2 * a * b - s) / (s - 2));
+        const double lambda =
+            std::min(a, b) <= 1 ? std::min(a, b) : std::sqrt((2 * a * b - s) / (s - 2));
         const double u = a + lambda;
         double u1, u2, v, y;
         do {

@@ -35,7 +35,7 @@ struct DerivationOptions {
     // Overrides LSystem::random: cpfg's generators (the string cpfg gives; the steps then
     // run in string order on one thread) or graftal's streams.
     std::optional<RandomStreams> random;
-    unsigned threads = 0;               // 0: one per core. The output never depends on it.
+    unsigned threads = 0;  // 0: one per core. The output never depends on it.
     // Answers ?E modules. nullptr: the one the file's `environment:` lines describe (if any).
     Environment* environment = nullptr;
     // Called after every step with the step number and the string's size (for progress).
