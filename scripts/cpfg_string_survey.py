@@ -2,28 +2,27 @@
 """Strings against cpfg: does `graftal derive` give the string cpfg gives, model by model?
 
 Usage: scripts/cpfg_string_survey.py CPFG MODELS_DIR [--graftal build/graftal]
-                                     [--markdown OUT.md] [--timeout SECONDS] [--seeds N]
+                                     [--markdown OUT.md] [--timeout SECONDS]
        scripts/cpfg_string_survey.py --self-test   (checks the comparison rule alone)
 
 CPFG is the user's own cpfg binary (graftal ships none: cpfg is GPL-3 and is not part of
-graftal).  It is run in batch mode exactly as the cpfg oracle pack was made:
-`cpfg -g -m MAP -str OUT NAME.l VIEW`, from the model's folder, with the folder's .map (or a
-grey ramp) and its .v (or an empty view file).  graftal is run as `graftal derive FOLDER`.
+graftal), with vlabcpp on the PATH.  MODELS_DIR is a tree of vlab model folders (vlab's
+`oofs/ext`, say).
 
-Every folder under MODELS_DIR that holds one .l file is one model.  Strings are compared with
-the oracle's rule (../shared/cpfg-oracle/check.sh): newlines removed, split into modules (one
-symbol and an optional parenthesised parameter list), symbols and parameter counts equal,
-parameters within a relative 1e-4 (absolute floor 1e-6).
+The models: every cpfg command in a folder's vlab `specifications` file (`cpfg -M plant.mat
+plant.l plant.v plant.a`) is one model, its .l and view file as the command names them
+(lpfg's models are left out: their command is lpfg); a folder without a specifications file
+and with one .l file is one model too, with its one .v.  cpfg is run in batch mode as the
+cpfg oracle pack was made, `cpfg -g -m MAP|-M MATERIALS -str OUT NAME.l VIEW`, from the
+model's folder, with the command's colour map or materials (or a grey ramp).  graftal is
+run as `graftal derive FOLDER` for a folder's first command (which picks the files from the
+specifications) and `graftal derive NAME.l VIEW` for the others.  A model read with a view
+file draws cpfg's random numbers in graftal, so stochastic models are compared string for
+string like the others.
 
-Stochastic models (a `seed:` line, or ran/nran/bran/biran in the file) cannot give cpfg's
-string: the random streams differ.  When their strings differ they are compared by statistics
-instead: graftal derives the model with seeds 1..N (--seeds, default 10); the model agrees when
-both strings use the same set of symbols and cpfg's module count lies within graftal's
-smallest and largest count widened by 10 %.
-
-A cpfg build may say on standard error that it lacks a feature the model needs (a line that
-starts with `cpfg-batch:`, as the instrument build described in docs/cpfg-compatibility.md
-prints for query modules and func()); such models are listed as not measured.
+Strings are compared with the oracle's rule (../shared/cpfg-oracle/check.sh): newlines
+removed, split into modules (one symbol and an optional parenthesised parameter list),
+symbols and parameter counts equal, parameters within a relative 1e-4 (absolute floor 1e-6).
 """
 import argparse
 import os
@@ -97,65 +96,86 @@ def run(cmd, timeout, cwd=None):
         return 'timeout', '', 'timeout after %d s' % timeout
 
 
-def model_files(folder):
-    names = sorted(os.listdir(folder))
-    lfiles = [n for n in names if n.endswith('.l')]
-    views = [n for n in names if n.endswith('.v')]
-    maps = [n for n in names if n.endswith('.map')]
-    return lfiles, views, maps
+def cpfg_commands(folder):
+    """The cpfg commands of the folder's specifications, as dicts of the files they name."""
+    path = os.path.join(folder, 'specifications')
+    if not os.path.exists(path):
+        return None
+    with open(path, errors='replace') as f:
+        lines = f.read().splitlines()
+    commands = []
+    for line in lines:
+        words = line.split()
+        if not words or os.path.basename(words[0]) != 'cpfg':
+            continue
+        cmd, k = {'l': None, 'v': None, 'map': None, 'mat': None}, 1
+        while k < len(words):
+            w = words[k]
+            if w in ('-w', '-wr', '-wp', '-wpr'):
+                k += 3
+                continue
+            if w in ('-m', '-m1', '-m2', '-M', '-e', '-P', '-str'):
+                if w in ('-m', '-m1') and k + 1 < len(words) and cmd['map'] is None:
+                    cmd['map'] = words[k + 1]
+                if w == '-M' and k + 1 < len(words):
+                    cmd['mat'] = words[k + 1]
+                k += 2
+                continue
+            if w.endswith('.l') and cmd['l'] is None:
+                cmd['l'] = w
+            elif w.endswith('.v') and cmd['v'] is None:
+                cmd['v'] = w
+            k += 1
+        if cmd['l'] and os.path.exists(os.path.join(folder, cmd['l'])) and \
+                all(c['l'] != cmd['l'] for c in commands):
+            commands.append(cmd)
+    return commands
 
 
-def cpfg_string(cpfg, folder, scratch, timeout):
+def models_of(folder, filenames):
+    """The models of a folder: its specifications' cpfg commands, else its one .l."""
+    commands = cpfg_commands(folder)
+    if commands is not None:
+        return commands
+    lfiles = sorted(n for n in filenames if n.endswith('.l'))
+    if len(lfiles) != 1:
+        return []
+    views = sorted(n for n in filenames if n.endswith('.v'))
+    maps = sorted(n for n in filenames if n.endswith('.map'))
+    return [{'l': lfiles[0], 'v': views[0] if len(views) == 1 else None,
+             'map': maps[0] if len(maps) == 1 else None, 'mat': None}]
+
+
+def cpfg_string(cpfg, folder, model, scratch, timeout):
     """(string or None, message) from the user's cpfg run in batch mode in the model's folder."""
-    lfiles, views, maps = model_files(folder)
-    view = os.path.abspath(os.path.join(folder, views[0])) if views else os.path.join(scratch, 'empty.v')
-    colours = os.path.abspath(os.path.join(folder, maps[0])) if maps else os.path.join(scratch, 'grey.map')
+    view = model['v'] if model['v'] and os.path.exists(os.path.join(folder, model['v'])) else None
+    view = os.path.abspath(os.path.join(folder, view)) if view else os.path.join(scratch, 'empty.v')
+    colours = ['-m', os.path.join(scratch, 'grey.map')]
+    if model['mat'] and os.path.exists(os.path.join(folder, model['mat'])):
+        colours = ['-M', model['mat']]
+    elif model['map'] and os.path.exists(os.path.join(folder, model['map'])):
+        colours = ['-m', model['map']]
     out = os.path.join(scratch, 'cpfg.str')
     if os.path.exists(out):
         os.remove(out)
-    code, _, err = run([cpfg, '-g', '-m', colours, '-str', out, lfiles[0], view], timeout,
+    code, _, err = run([cpfg, '-g'] + colours + ['-str', out, model['l'], view], timeout,
                        cwd=folder)
-    lacks = [line.split(':', 1)[1].strip() for line in err.splitlines()
-             if line.startswith('cpfg-batch:')]
     if not os.path.exists(out) or os.path.getsize(out) == 0:
         last = [line for line in err.splitlines() if line.strip()]
-        return None, 'cpfg wrote no string (%s)' % (last[-1].strip() if last else 'exit %s' % code), lacks
+        return None, 'cpfg wrote no string (%s)' % (last[-1].strip()[:120] if last else 'exit %s' % code)
     with open(out) as f:
-        return f.read(), '', lacks
+        return f.read(), ''
 
 
-def graftal_string(graftal, folder, timeout, seed=None):
-    cmd = [graftal, 'derive', '--quiet', '--threads', '1', folder]
-    if seed is not None:
-        cmd[2:2] = ['--seed', str(seed)]
-    code, out, err = run(cmd, timeout)
+def graftal_string(graftal, args, timeout):
+    code, out, err = run([graftal, 'derive', '--quiet', '--threads', '1'] + args, timeout)
     if code != 0:
         lines = [line for line in err.splitlines() if line.strip()]
         return None, (lines[0].strip() if lines else 'exit %s' % code)[:200]
     return out, ''
 
 
-def statistics_agree(cpfg_modules, graftal, folder, timeout, seeds):
-    counts, symbols = [], set()
-    for seed in range(1, seeds + 1):
-        text, err = graftal_string(graftal, folder, timeout, seed)
-        if text is None:
-            return False, 'graftal failed with seed %d: %s' % (seed, err)
-        ms = modules(text)
-        counts.append(len(ms))
-        symbols |= {m[0] for m in ms}
-    cpfg_symbols = {m[0] for m in cpfg_modules}
-    low, high = 0.9 * min(counts), 1.1 * max(counts)
-    n = len(cpfg_modules)
-    detail = 'cpfg %d modules; graftal %d..%d over seeds 1..%d' % (n, min(counts), max(counts), seeds)
-    if cpfg_symbols != symbols:
-        only_cpfg = ''.join(sorted(cpfg_symbols - symbols))
-        only_graftal = ''.join(sorted(symbols - cpfg_symbols))
-        return False, detail + '; symbols only in cpfg: %r, only in graftal: %r' % (only_cpfg, only_graftal)
-    return low <= n <= high, detail
-
-
-def survey(cpfg, root, graftal, timeout, seeds):
+def survey(cpfg, root, graftal, timeout):
     rows = []
     with tempfile.TemporaryDirectory() as scratch:
         open(os.path.join(scratch, 'empty.v'), 'w').close()
@@ -163,20 +183,26 @@ def survey(cpfg, root, graftal, timeout, seeds):
             f.write(bytes(v for i in range(256) for v in (i, i, i)))
         for dirpath, dirnames, filenames in sorted(os.walk(root)):
             dirnames.sort()
-            lfiles = [n for n in filenames if n.endswith('.l')]
-            if len(lfiles) != 1:
-                continue
-            name = os.path.relpath(dirpath, root)
-            with open(os.path.join(dirpath, lfiles[0]), errors='replace') as f:
-                stochastic = bool(RANDOM.search(f.read()))
-            row = {'model': name, 'stochastic': stochastic}
-            expected, why, lacks = cpfg_string(cpfg, dirpath, scratch, timeout)
-            if lacks:
-                row.update(result='not measured', detail='cpfg build lacks: ' + '; '.join(lacks))
-            elif expected is None:
-                row.update(result='cpfg: no string', detail=why)
-            else:
-                actual, err = graftal_string(graftal, dirpath, timeout)
+            models = models_of(dirpath, filenames)
+            for index, model in enumerate(models):
+                name = os.path.relpath(dirpath, root)
+                if len(models) > 1:
+                    name += ' (%s)' % model['l']
+                with open(os.path.join(dirpath, model['l']), errors='replace') as f:
+                    stochastic = bool(RANDOM.search(f.read()))
+                row = {'model': name, 'stochastic': stochastic}
+                expected, why = cpfg_string(cpfg, dirpath, model, scratch, timeout)
+                if expected is None:
+                    row.update(result='cpfg: no string', detail=why)
+                    rows.append(row)
+                    continue
+                if index == 0:
+                    args = [dirpath]
+                else:
+                    args = [os.path.join(dirpath, model['l'])]
+                    if model['v'] and os.path.exists(os.path.join(dirpath, model['v'])):
+                        args.append(os.path.join(dirpath, model['v']))
+                actual, err = graftal_string(graftal, args, timeout)
                 if actual is None:
                     row.update(result='graftal error', detail=err)
                 else:
@@ -184,13 +210,9 @@ def survey(cpfg, root, graftal, timeout, seeds):
                     diff = first_difference(e, a)
                     if not diff:
                         row.update(result='equal', detail='%d modules' % len(e))
-                    elif stochastic:
-                        ok, detail = statistics_agree(e, graftal, dirpath, timeout, seeds)
-                        row.update(result='statistics agree' if ok else 'statistics differ',
-                                   detail=detail)
                     else:
                         row.update(result='differ', detail=diff)
-            rows.append(row)
+                rows.append(row)
     return rows
 
 
@@ -201,13 +223,14 @@ def table(rows, cpfg):
         detail = r['detail'].replace('|', '\\|')
         lines.append('| %s | %s | %s | %s |' % (r['model'], 'yes' if r['stochastic'] else '',
                                                 r['result'], detail))
-    runs = [r for r in rows if r['result'] not in ('cpfg: no string', 'not measured')]
-    good = [r for r in runs if r['result'] in ('equal', 'statistics agree')]
+    runs = [r for r in rows if r['result'] != 'cpfg: no string']
+    good = [r for r in runs if r['result'] == 'equal']
     lines.append('')
-    lines.append('%d of %d models that cpfg runs give cpfg\'s string (or, stochastic, its statistics); '
-                 '%d not measured, %d rejected by cpfg.' % (
-                     len(good), len(runs), sum(r['result'] == 'not measured' for r in rows),
-                     sum(r['result'] == 'cpfg: no string' for r in rows)))
+    lines.append('%d of %d models give cpfg\'s string (%d of the %d stochastic ones); '
+                 'cpfg wrote no string for %d of the %d models.' % (
+                     len(good), len(runs), sum(r['stochastic'] for r in good),
+                     sum(r['stochastic'] for r in runs),
+                     sum(r['result'] == 'cpfg: no string' for r in rows), len(rows)))
     return '\n'.join(lines)
 
 
@@ -242,13 +265,12 @@ def main():
     parser.add_argument('--graftal', default=os.path.join(os.path.dirname(__file__), '..', 'build', 'graftal'))
     parser.add_argument('--markdown')
     parser.add_argument('--timeout', type=int, default=120)
-    parser.add_argument('--seeds', type=int, default=10)
     args = parser.parse_args()
     for path in (args.cpfg, args.graftal):
         if not os.access(path, os.X_OK):
             sys.exit('cpfg_string_survey: %s is not an executable file' % path)
     text = table(survey(os.path.abspath(args.cpfg), args.models, os.path.abspath(args.graftal),
-                        args.timeout, args.seeds), args.cpfg)
+                        args.timeout), args.cpfg)
     print(text)
     if args.markdown:
         with open(args.markdown, 'w') as f:

@@ -112,8 +112,8 @@ TEST(CpfgViewFile, AnErrorAfterAMultiLineCommentNamesItsOwnLine) {
     TempDir dir;
     ParseResult r = loadWithView(dir, "Lsystem: 1\nAxiom: F\nendlsystem\n",
                                  "/* one\ntwo */ angle increment: many\n");
-    ASSERT_FALSE(r.ok());
-    EXPECT_NE(messages(r.diagnostics).find("m.v:2:25: error:"), std::string::npos)
+    ASSERT_TRUE(r.ok()) << "cpfg forgives its view files";
+    EXPECT_NE(messages(r.diagnostics).find("m.v:2:25: warning:"), std::string::npos)
         << messages(r.diagnostics);
 }
 
@@ -165,8 +165,8 @@ TEST(CpfgViewFile, PolygonizationLevelAndCylinderSidesGiveTheStemsSides) {
     EXPECT_EQ(five.model.view.materials.tubeSides.value_or(0), 5);
     ParseResult two =
         loadWithView(dir, "Lsystem: 1\nAxiom: F\nendlsystem\n", "cylinder sides: 2\n");
-    ASSERT_FALSE(two.ok());
-    EXPECT_NE(messages(two.diagnostics).find("m.v:1:17: error:"), std::string::npos)
+    ASSERT_TRUE(two.ok()) << "cpfg forgives its view files";
+    EXPECT_NE(messages(two.diagnostics).find("m.v:1:17: warning:"), std::string::npos)
         << messages(two.diagnostics);
 }
 
@@ -208,8 +208,8 @@ TEST(CpfgViewFile, TheFirstLightGivesTheSun) {
     ASSERT_EQ(r.warnings().size(), 1u) << messages(r.diagnostics);
     EXPECT_NE(messages(r.diagnostics).find("m.v:2:"), std::string::npos);
     ParseResult bad = loadWithView(dir, "Lsystem: 1\nAxiom: F\nendlsystem\n", "light: Q: 1 2 3\n");
-    ASSERT_FALSE(bad.ok());
-    EXPECT_NE(messages(bad.diagnostics).find("m.v:1:8: error:"), std::string::npos)
+    ASSERT_TRUE(bad.ok()) << "cpfg forgives its view files";
+    EXPECT_NE(messages(bad.diagnostics).find("m.v:1:8: warning:"), std::string::npos)
         << messages(bad.diagnostics);
 }
 

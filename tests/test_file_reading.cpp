@@ -109,7 +109,7 @@ TEST(FileReading, ViewFilesNamingDevicesAreErrorsAtTheirLines) {
     graftal::ParseOptions options;
     options.viewFile = v.string();
     auto r = graftal::loadModel(l, options);
-    EXPECT_FALSE(r.ok());
+    EXPECT_TRUE(r.ok()) << "cpfg forgives its view files: a warning";
     EXPECT_NE(messagesOf(r).find(v.string() +
                                  ":2:10: the contour file '/dev/zero' is a device, not a file"),
               std::string::npos)

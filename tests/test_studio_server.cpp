@@ -331,18 +331,18 @@ TEST_F(StudioServerTest, TheViewFileBesideTheModelAppliesToTheEditedText) {
     EXPECT_FLOAT_EQ(plain["stats"]["bbox"]["max"][0].get<float>(), 7);
     EXPECT_NE(plain["stats"]["bbox"], meta["stats"]["bbox"]);
 
-    // A model folder (one .l, one .v) uses its view file whatever its name; an error in it
-    // names the view file.
+    // A model folder (one .l, one .v) uses its view file whatever its name; a problem in it
+    // is a warning naming the view file (cpfg forgives its view files).
     fs::create_directories(root / "plant");
     writeText(root / "plant" / "plant.l", kHilbert);
     writeText(root / "plant" / "view.v", "angle increment: x\n");
     auto bad = json::parse(post("/api/parse", model(kHilbert, "plant/plant.l"))->body);
     EXPECT_EQ(bad["viewFile"], "view.v");
-    EXPECT_FALSE(bad["ok"]);
+    EXPECT_TRUE(bad["ok"]);
     ASSERT_FALSE(bad["diagnostics"].empty());
     EXPECT_EQ(bad["diagnostics"][0]["file"], "view.v");
     EXPECT_EQ(bad["diagnostics"][0]["line"], 1);
-    EXPECT_EQ(post("/api/derive", model(kHilbert, "plant/plant.l"))->status, 422);
+    EXPECT_EQ(post("/api/derive", model(kHilbert, "plant/plant.l"))->status, 200);
 }
 
 TEST_F(StudioServerTest, BadModelsAnswerErrorsAndTheServerGoesOn) {

@@ -96,26 +96,43 @@ TEST(ViewFile, WidthAndColourIncrementsDrawTheSegments) {
     EXPECT_EQ(s.segments[4].color, 3) << ", subtracts it";
 }
 
-TEST(ViewFile, ABadValueIsAnErrorAtItsColumnNamingTheSetting) {
+// cpfg forgives its view files: a value it cannot use leaves the setting at its default and
+// the model runs. graftal warns at the value's file:line:column and goes on.
+TEST(ViewFile, ABadValueIsAWarningAtItsColumnAndTheSettingKeepsItsDefault) {
     TempDir dir;
     ParseResult r = loadWithView(dir, kPlant, "angle increment: 30\ninitial line width: thick\n");
-    ASSERT_EQ(r.errors().size(), 1u) << messages(r.diagnostics);
-    const Diagnostic e = r.errors()[0];
+    ASSERT_TRUE(r.ok()) << messages(r.diagnostics);
+    ASSERT_EQ(r.warnings().size(), 1u) << messages(r.diagnostics);
+    const Diagnostic e = r.warnings()[0];
     EXPECT_EQ(e.location.file, (dir.path() / "m.v").string());
     EXPECT_EQ(e.location.line, 2);
     EXPECT_EQ(e.location.column, 21);
     EXPECT_EQ(e.location.endColumn, 26);
     EXPECT_NE(e.message.find("line width"), std::string::npos) << e.message;
     EXPECT_NE(e.message.find("expected a number"), std::string::npos) << e.message;
+    EXPECT_DOUBLE_EQ(r.model.view.turtle.angleDegrees, 30) << "the good line before still counts";
 
     r = loadWithView(dir, kPlant, "viewpoint: 1, 2\n");
-    ASSERT_EQ(r.errors().size(), 1u) << messages(r.diagnostics);
-    EXPECT_NE(r.errors()[0].message.find("three numbers"), std::string::npos);
+    ASSERT_TRUE(r.ok()) << messages(r.diagnostics);
+    ASSERT_EQ(r.warnings().size(), 1u) << messages(r.diagnostics);
+    EXPECT_NE(r.warnings()[0].message.find("three numbers"), std::string::npos);
 
-    r = loadWithView(dir, kPlant, "projection: fisheye\n");
-    ASSERT_EQ(r.errors().size(), 1u);
-    EXPECT_EQ(r.errors()[0].location.line, 1);
-    EXPECT_EQ(r.errors()[0].location.column, 13);
+    r = loadWithView(dir, kPlant,
+                     "projection: fisheye\nangle increment: ?\nline style: wireframe\n");
+    ASSERT_TRUE(r.ok()) << messages(r.diagnostics);
+    ASSERT_GE(r.warnings().size(), 2u) << messages(r.diagnostics);
+    EXPECT_EQ(r.warnings()[0].location.line, 1);
+    EXPECT_EQ(r.warnings()[0].location.column, 13);
+    EXPECT_EQ(r.warnings()[1].location.line, 2);
+    const double defaultTurn = loadWithView(dir, kPlant, "\n").model.view.turtle.angleDegrees;
+    EXPECT_DOUBLE_EQ(r.model.view.turtle.angleDegrees, defaultTurn)
+        << "'angle increment: ?' leaves the default turn";
+    const Model m = std::move(r).orThrow();
+    EXPECT_EQ(derive(m.lsystem).size(), 9u) << "the model derives all the same";
+
+    // The .l file's own errors still stop the run.
+    r = loadWithView(dir, "Lsystem: 1\nAxiom: A(\nendlsystem\n", "angle increment: ?\n");
+    EXPECT_FALSE(r.ok());
 }
 
 TEST(ViewFile, AnUnknownLineIsWarnedOnceWithItsLine) {
@@ -137,7 +154,8 @@ TEST(ViewFile, TheCommandLineTakesTheViewFileSecond) {
     EXPECT_NE(r.out.find("\"max\": [\n      0.0,\n      1.0"), std::string::npos) << r.out;
     auto bad = dir.write("bad.v", "angle increment: x\n");
     r = runGraftal("derive '" + l.string() + "' '" + bad.string() + "'");
-    EXPECT_NE(r.status, 0);
+    EXPECT_EQ(r.status, 0) << "cpfg forgives its view files: " << r.err;
+    EXPECT_EQ(r.out, "F+F\n");
     EXPECT_NE(r.err.find("bad.v:1:18"), std::string::npos) << r.err;
 }
 

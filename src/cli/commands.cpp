@@ -147,6 +147,7 @@ DeriveRequest deriveRequest(const InputOptions& in) {
     DeriveRequest r;
     r.steps = in.steps;
     r.seed = in.seed;
+    r.random = in.random;
     r.threads = in.threads;
     r.memoryLimit = in.memoryLimit;
     r.stream = in.stream ? StreamPolicy::Always : StreamPolicy::Auto;

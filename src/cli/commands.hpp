@@ -24,6 +24,7 @@ struct InputOptions {
     std::optional<int> steps;  // -n
     std::map<std::string, std::string> defines;  // -D NAME=VALUE
     std::optional<std::uint64_t> seed;
+    std::optional<RandomStreams> random;  // --random cpfg|graftal
     std::size_t memoryLimit = std::size_t(2) << 30;
     unsigned threads = 0;
     bool stream = false;  // --stream: expand depth-first, never hold the string

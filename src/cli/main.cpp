@@ -37,6 +37,15 @@ void addInputOptions(CLI::App& cmd, graftal::cli::InputOptions& in, std::string&
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
     cmd.add_option("--seed", in.seed, "random seed for stochastic L-systems")
         ->check(CLI::NonNegativeNumber);
+    cmd.add_option("--random", in.random,
+                   "whose random numbers: cpfg (cpfg's generators in cpfg's order: cpfg's "
+                   "string; the default for a model read with a view file) or graftal "
+                   "(graftal's streams: the same string for any thread count)")
+        ->transform(CLI::CheckedTransformer(
+            std::map<std::string, graftal::RandomStreams>{
+                {"cpfg", graftal::RandomStreams::Cpfg},
+                {"graftal", graftal::RandomStreams::Graftal}},
+            CLI::ignore_case));
     cmd.add_option("--memory-limit", memoryLimit, "largest string memory, e.g. 2G (default 2G)");
     cmd.add_option("--threads", in.threads, "worker threads (default: all cores)");
     cmd.add_flag("--stream", in.stream,

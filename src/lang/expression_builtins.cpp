@@ -31,6 +31,7 @@ enum Fn1 : std::uint8_t {
     FnCeil,
     FnTrunc,
     FnSign,
+    FnStop,
 };
 enum Fn2 : std::uint8_t { FnAtan2, FnMin, FnMax };
 
@@ -50,6 +51,7 @@ constexpr std::array kFunctions{
     FunctionInfo{"srand", 1, 0},     FunctionInfo{"func", 2, 0},
     FunctionInfo{"curveX", 2, 0},    FunctionInfo{"curveY", 2, 1},
     FunctionInfo{"curveZ", 2, 2},    FunctionInfo{"curveGAL", 1, 0},
+    FunctionInfo{"stop", 1, FnStop},
 };
 
 // A gamma(shape, 1) deviate (Marsaglia and Tsang), from uniform numbers.
@@ -108,6 +110,10 @@ double applyFunction1(std::uint8_t fn, double x) {
             return std::floor(x + 0.5);  // cpfg's trunc rounds to the nearest whole number
         case FnSign:
             return x > 0 ? 1.0 : (x < 0 ? -1.0 : 0.0);
+        case FnStop:
+            // cpfg's stop(x) stops (or, with 1, pauses) its animation and leaves x as its
+            // value; it changes nothing in the derivation.
+            return x;
     }
     return 0;
 }

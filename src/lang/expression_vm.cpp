@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "expression_builtins.hpp"
+#include "graftal/core/cpfg_random.hpp"
 #include "graftal/core/module_string.hpp"
 #include "graftal/core/random_stream.hpp"
 
@@ -163,9 +164,17 @@ double Expression::run(std::span<const double> slots, const EvalContext* ctx) co
                 checkDomain(st[sp], "a function");
                 break;
             case Op::Ran:
-                st[sp] = st[sp] * uniform();
+                if (ctx && ctx->cpfgRandom)
+                    st[sp] = ctx->cpfgRandom->ran(st[sp]);
+                else
+                    st[sp] = st[sp] * uniform();
                 break;
             case Op::Nran: {
+                if (ctx && ctx->cpfgRandom) {
+                    st[sp - 1] = ctx->cpfgRandom->nran(st[sp - 1], st[sp]);
+                    --sp;
+                    break;
+                }
                 double z = normalDeviate(uniform);
                 st[sp - 1] = st[sp - 1] + st[sp] * z;
                 --sp;
@@ -278,7 +287,8 @@ double Expression::run(std::span<const double> slots, const EvalContext* ctx) co
                 double a = st[sp - 1], b = st[sp];
                 if (!(a > 0) || !(b > 0))
                     throw Error(location_, "bran(a, b) needs a > 0 and b > 0 in '" + text_ + "'");
-                st[sp - 1] = betaDeviate(a, b, uniform);
+                st[sp - 1] = ctx && ctx->cpfgRandom ? ctx->cpfgRandom->bran(a, b)
+                                                    : betaDeviate(a, b, uniform);
                 --sp;
                 break;
             }
@@ -288,7 +298,10 @@ double Expression::run(std::span<const double> slots, const EvalContext* ctx) co
                     throw Error(location_,
                                 "biran(n, p) needs n from 0 to 10000000 in '" + text_ + "'");
                 double hits = 0;
-                for (double k = 0; k < count; ++k) hits += uniform() < p ? 1 : 0;
+                if (ctx && ctx->cpfgRandom)
+                    hits = ctx->cpfgRandom->biran(count, p);
+                else
+                    for (double k = 0; k < count; ++k) hits += uniform() < p ? 1 : 0;
                 st[sp - 1] = hits;
                 --sp;
                 break;
@@ -324,6 +337,11 @@ double Expression::run(std::span<const double> slots, const EvalContext* ctx) co
                 break;
             }
             case Op::Srand:
+                if (ctx && ctx->cpfgRandom) {
+                    ctx->cpfgRandom->srand(st[sp]);
+                    st[sp] = 0;
+                    break;
+                }
                 if (!ctx || !ctx->reseed)
                     throw Error(location_, "srand() used where no random stream exists");
                 ctx->reseed(st[sp]);

@@ -123,7 +123,9 @@ void LSystem::print(std::ostream& os, const ViewSettings* view) const {
            << (s + 1 == symbols.size() ? ";\n" : "");
     os << "Lsystem: " << name << '\n';
     os << "derivation length: " << derivationLength << '\n';
-    if (seed) os << "seed: " << seed << '\n';
+    if (seed || hasSeedLine) os << "seed: " << seed << '\n';
+    if (randomLine || random == RandomStreams::Cpfg)
+        os << "random: " << (random == RandomStreams::Cpfg ? "cpfg" : "graftal") << '\n';
     if (view) os << *view;
     os << "axiom: " << (axiom.empty() ? std::string("*") : axiom.toString(symbols)) << '\n';
     std::string ign;

@@ -11,6 +11,7 @@
 #include "graftal/lang/parser_target.hpp"
 #include "graftal/lang/source_text.hpp"
 #include "graftal/lang/view_file.hpp"
+#include "graftal/lang/vlab_specifications.hpp"
 #include "parser.hpp"
 #include "preprocessor.hpp"
 
@@ -173,6 +174,63 @@ void addFolderFiles(const std::filesystem::path& folder, ParseResult& result) {
     }
 }
 
+// The colour map and materials the specifications' cpfg command names (-m, -M), when the
+// view file named none and the files are there.
+void addCommandFiles(const std::filesystem::path& folder, const VlabCommand& command,
+                     Model& model) {
+    std::error_code ec;
+    if (model.view.materials.colorMap.empty() && !command.colorMap.empty() &&
+        std::filesystem::is_regular_file(folder / command.colorMap, ec))
+        model.view.materials.colorMap = command.colorMap;
+    if (model.view.materials.materialFile.empty() && !command.materials.empty() &&
+        std::filesystem::is_regular_file(folder / command.materials, ec))
+        model.view.materials.materialFile = command.materials;
+}
+
+// Whether the text has `#define NAME` (NAME whole, not the start of a longer name).
+bool definesMacro(std::string_view text, const std::string& name) {
+    const std::string key = "define " + name;
+    for (std::size_t at = text.find(key); at != std::string_view::npos;
+         at = text.find(key, at + 1)) {
+        const std::size_t after = at + key.size();
+        if (after >= text.size() ||
+            !(std::isalnum(static_cast<unsigned char>(text[after])) || text[after] == '_'))
+            return true;
+    }
+    return false;
+}
+
+// cpfg runs the L-system through the preprocessor with -DNAME=i for the i-th item of the
+// view file's function set (its `name:`, a `.func` suffix taken off), so that models call
+// func(BR_ANGLE, t). A name the .l file #defines itself keeps the file's value.
+void defineFunctionSetNames(std::string_view text, std::string_view viewText,
+                            const std::string& viewFileName, ParseOptions& options) {
+    const std::vector<std::string> sets = viewFileValues(viewText, "function set");
+    if (sets.empty()) return;
+    std::string name = sets.back().substr(0, sets.back().find_first_of(" \t"));
+    const std::filesystem::path path = std::filesystem::path(viewFileName).parent_path() / name;
+    std::string setText, problem;
+    if (!readWholeFile(path, setText, problem)) return;  // the view file's reader says why
+    std::vector<GraphicalFunction> functions;
+    try {
+        functions = parseFunctionSet(setText, path.string());
+    } catch (const Error&) {
+        return;
+    }
+    for (std::size_t i = 0; i < functions.size(); ++i) {
+        std::string macro = functions[i].name();
+        if (macro.size() > 5 && macro.ends_with(".func")) macro.resize(macro.size() - 5);
+        const bool identifier = !macro.empty() &&
+                                !std::isdigit(static_cast<unsigned char>(macro[0])) &&
+                                std::all_of(macro.begin(), macro.end(), [](char c) {
+                                    return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+                                });
+        if (!identifier || options.defines.count(macro)) continue;
+        if (definesMacro(text, macro)) continue;
+        options.defines[macro] = std::to_string(i + 1);
+    }
+}
+
 }  // namespace
 
 ParseResult loadModel(const std::filesystem::path& given, ParseOptions options) {
@@ -184,7 +242,23 @@ ParseResult loadModel(const std::filesystem::path& given, ParseOptions options) 
         return r;
     };
     std::error_code ec;
+    std::optional<VlabCommand> vlab;
     if (std::filesystem::is_directory(path, ec)) {
+        // A vlab model folder: its `specifications` names the files cpfg is run on.
+        std::string specText, specProblem;
+        if (std::filesystem::is_regular_file(path / "specifications", ec) &&
+            readWholeFile(path / "specifications", specText, specProblem))
+            vlab = cpfgCommandOf(specText);
+        if (vlab && !std::filesystem::is_regular_file(path / vlab->lFile, ec)) vlab.reset();
+    }
+    if (vlab) {
+        if (options.viewFile.empty() && !vlab->viewFile.empty() &&
+            std::filesystem::is_regular_file(path / vlab->viewFile, ec))
+            options.viewFile = (path / vlab->viewFile).string();
+        path = path / vlab->lFile;
+        if (options.fileName.empty() || options.fileName == given.string())
+            options.fileName = path.string();
+    } else if (std::filesystem::is_directory(path, ec)) {
         // A model folder: its one L-system, and its one view file unless one is named.
         auto ls = filesEndingWith(path, ".l");
         if (ls.size() != 1)
@@ -211,6 +285,7 @@ ParseResult loadModel(const std::filesystem::path& given, ParseOptions options) 
     const bool folder = std::filesystem::is_directory(given, ec);
     if (options.viewFile.empty()) {
         ParseResult result = parse(text, options);
+        if (vlab) addCommandFiles(given, *vlab, result.model);
         if (folder) addFolderFiles(given, result);
         return result;
     }
@@ -224,19 +299,36 @@ ParseResult loadModel(const std::filesystem::path& given, ParseOptions options) 
         return result;
     }
     ParseResult result = parse(text, viewText, options.viewFile, options);
+    if (vlab) addCommandFiles(given, *vlab, result.model);
     if (folder) addFolderFiles(given, result);
     return result;
 }
 
 ParseResult parse(std::string_view text, std::string_view viewText, const std::string& viewFileName,
-                  const ParseOptions& options) {
+                  const ParseOptions& givenOptions) {
+    ParseOptions options = givenOptions;
+    options.surfaceLetters += viewFileSurfaceLetters(viewText);
+    defineFunctionSetNames(text, viewText, viewFileName, options);
     ParseResult result = parse(text, options);
+    // A model read with a view file is cpfg's: it draws cpfg's random numbers unless its
+    // .l file says `random: graftal`.
+    if (!result.model.lsystem.randomLine) result.model.lsystem.random = RandomStreams::Cpfg;
+    result.model.lsystem.cpfgViewBox = viewFileGivesBox(viewText);
     DiagnosticList diags;
     ModelBuilder builder(diags);
     builder.model() = std::move(result.model);
     parseViewFileInto(viewText, viewFileName, builder, diags);
     result.model = std::move(builder.model());
-    for (const auto& d : diags.items()) result.diagnostics.push_back(d);
+    // cpfg forgives its view files: a value it cannot use leaves the setting as it was and
+    // the model still runs. Only the .l file's errors stop a run, so here an error is a
+    // warning, still at its file:line:column.
+    for (Diagnostic d : diags.items()) {
+        if (d.severity == Severity::Error) {
+            d.severity = Severity::Warning;
+            d.message += "; the line is ignored, as cpfg ignores it";
+        }
+        result.diagnostics.push_back(std::move(d));
+    }
     return result;
 }
 

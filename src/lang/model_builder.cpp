@@ -117,6 +117,12 @@ void ModelBuilder::moduleAge(const ModuleAge& age) {
 
 void ModelBuilder::seed(std::uint64_t seed, const SourceLocation&) {
     model_.lsystem.seed = seed;
+    model_.lsystem.hasSeedLine = true;
+}
+
+void ModelBuilder::randomStreams(RandomStreams streams, const SourceLocation&) {
+    model_.lsystem.random = streams;
+    model_.lsystem.randomLine = true;
 }
 
 void ModelBuilder::ignore(const std::vector<Symbol>& symbols, bool consider,

@@ -18,7 +18,8 @@ std::string describeByte(std::string_view text, std::size_t i) {
 }  // namespace
 
 bool tokenizeModules(std::string_view text, const SourceLocation& loc, int startColumn,
-                     SymbolTable& symbols, std::vector<ModuleToken>& out, DiagnosticList& diags) {
+                     SymbolTable& symbols, std::vector<ModuleToken>& out, DiagnosticList& diags,
+                     std::string_view oneLetterSurfaces) {
     auto where = [&](std::size_t i) {
         SourceLocation l = loc;
         l.column = startColumn + static_cast<int>(i);
@@ -112,11 +113,17 @@ bool tokenizeModules(std::string_view text, const SourceLocation& loc, int start
             while (e < text.size() &&
                    (std::isalnum(static_cast<unsigned char>(text[e])) || text[e] == '_'))
                 ++e;
-            if (e - i <= 2) {  // nothing or one character: read as any module
+            std::string_view name = text.substr(i + 1, e - i - 1);
+            // cpfg reads one character after ~: with surface L declared in the view file,
+            // `~LF` is the surface L, then F. A run that names no declared module then starts
+            // with that surface's letter.
+            const bool oneLetter = !name.empty() &&
+                                   oneLetterSurfaces.find(name[0]) != std::string_view::npos &&
+                                   symbols.find(name) < 0;
+            if (e - i <= 2 || oneLetter) {  // nothing or one character: read as any module
                 ++i;
                 continue;
             }
-            std::string_view name = text.substr(i + 1, e - i - 1);
             if (symbols.size() >= kMaxSymbols && symbols.find(name) < 0) {
                 diags.error(where(i), "too many module names: at most " +
                                           std::to_string(kMaxSymbols - kFirstDeclaredSymbol) +

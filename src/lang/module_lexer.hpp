@@ -26,8 +26,11 @@ struct ModuleToken {
 // `startColumn` is the column of text[0] on line `loc.line`. Returns false and reports
 // to `diags` when the text is malformed. `~` is a module of its own, as in cpfg; a
 // surface name of two or more characters after it is one module, declared in `symbols`
-// on first use (matched only after ~ unless `module` declares it).
+// on first use (matched only after ~ unless `module` declares it), except that after a
+// letter of `oneLetterSurfaces` (the surfaces declared with one-letter names) ~ takes that
+// one letter, as cpfg does, unless the whole run is a declared name.
 bool tokenizeModules(std::string_view text, const SourceLocation& loc, int startColumn,
-                     SymbolTable& symbols, std::vector<ModuleToken>& out, DiagnosticList& diags);
+                     SymbolTable& symbols, std::vector<ModuleToken>& out, DiagnosticList& diags,
+                     std::string_view oneLetterSurfaces = {});
 
 }  // namespace graftal

@@ -44,8 +44,8 @@ std::string_view trimView(std::string_view s) {
 // then the view settings a .l file states (from their table), then the global blocks.
 const std::vector<std::string> kKeywords = [] {
     std::vector<std::string> k = {
-        "lsystem", "derivation length", "axiom", "ignore",         "consider",    "age",
-        "seed",    "maximum depth",     "table", "table schedule", "environment",
+        "lsystem", "derivation length", "axiom", "ignore",         "consider",    "age", "seed",
+        "random",  "maximum depth",     "table", "table schedule", "environment",
     };
     for (const auto& name : lFileSettingNames()) k.push_back(name);
     for (const char* block : {"start", "starteach", "endeach", "end", "define"}) k.push_back(block);
@@ -428,6 +428,16 @@ void Parser::parseDirective(const SourceLine& line, const std::string& kw, std::
         parseSchedule(line, valueStart);
     } else if (parseViewSetting(line, kw, valueStart)) {
         return;
+    } else if (kw == "random") {
+        std::string_view word = trimView(std::string_view(line.text).substr(valueStart));
+        if (word != "cpfg" && word != "graftal") {
+            diags_.error(loc,
+                         "random: expects 'cpfg' (cpfg's generators, in cpfg's order) or "
+                         "'graftal' (graftal's streams), not '" +
+                             std::string(word) + "'");
+            return;
+        }
+        target_.randomStreams(word == "cpfg" ? RandomStreams::Cpfg : RandomStreams::Graftal, loc);
     } else if (kw == "seed") {
         if (!constantValue(line, valueStart, v)) return;
         // 2^64 is the first double above the largest uint64_t.
@@ -510,7 +520,7 @@ void Parser::parseAxiom(const SourceLine& line, std::size_t valueStart) {
     if (trimView(value) == "*") return;  // the empty axiom
     std::vector<ModuleToken> toks;
     if (!tokenizeModules(value, loc, static_cast<int>(valueStart) + 1, target_.symbols(), toks,
-                         diags_))
+                         diags_, surfaceLetters_))
         return;
     if (toks.empty()) {
         diags_.error(at(line, valueStart), "expected the axiom's modules after 'axiom:'");
@@ -535,8 +545,9 @@ void Parser::parseAxiom(const SourceLine& line, std::size_t valueStart) {
             Expression e = compileExpression(a.text, aloc, scope, local);
             for (const auto& d : local.items()) diags_.add(d);
             if (e.empty()) return;
-            if (e.usesState() || e.prints()) {
-                // Start: runs first; the derivation evaluates these.
+            if (e.needsContext()) {
+                // Start: runs first, the view file's functions come after the .l, and
+                // ran() draws from the derivation's numbers: the derivation evaluates these.
                 deferred.push_back({axiom.size(), args.size(), std::move(e)});
                 args.push_back(0);
                 continue;
@@ -584,7 +595,7 @@ void Parser::parseIgnore(const SourceLine& line, const std::string& kw, std::siz
     }
     std::vector<ModuleToken> toks;
     if (!tokenizeModules(value, loc, static_cast<int>(valueStart) + 1, target_.symbols(), toks,
-                         diags_))
+                         diags_, surfaceLetters_))
         return;
     for (const auto& t : toks) {
         if (t.hasParens) {
@@ -606,7 +617,7 @@ void Parser::parseAges(const SourceLine& line, std::size_t valueStart) {
     SourceLocation loc = at(line, valueStart);
     std::vector<ModuleToken> toks;
     if (!tokenizeModules(value, loc, static_cast<int>(valueStart) + 1, target_.symbols(), toks,
-                         diags_))
+                         diags_, surfaceLetters_))
         return;
     if (toks.empty()) {
         diags_.error(loc,

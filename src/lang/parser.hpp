@@ -40,7 +40,11 @@ class Parser {
     // Reads `src` and writes what it finds through `target`; problems go to `diags`.
     Parser(const SourceText& src, const ParseOptions& options, DiagnosticList& diags,
            ParserTarget& target)
-        : src_(src), options_(options), diags_(diags), target_(target) {}
+        : src_(src),
+          options_(options),
+          diags_(diags),
+          target_(target),
+          surfaceLetters_(options.surfaceLetters) {}
 
     void run();
 
@@ -131,6 +135,9 @@ class Parser {
     };
     std::vector<RawScheduleEntry> rawSchedule_;
     int scheduleLine_ = 0;
+    // One-letter surface names (the view file's and the .l's `surface:` lines read so
+    // far): after ~ such a letter is the surface alone, as cpfg reads it.
+    std::string surfaceLetters_;
 };
 
 }  // namespace graftal::parsing

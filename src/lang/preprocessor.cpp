@@ -61,6 +61,7 @@ constexpr auto kTimeLimit = std::chrono::seconds(60);
 // U+E000 and U+E001 (private use): what `'` and a `/` before another `/` become for mcpp.
 constexpr std::string_view kQuoteShield = "\xEE\x80\x80";
 constexpr std::string_view kSlashShield = "\xEE\x80\x81";
+constexpr std::string_view kHashShield = "\xEE\x80\x82";
 
 std::mutex gMcppMutex;
 
@@ -121,12 +122,42 @@ int shieldMcppCompare(dl_phdr_info* info, std::size_t, void*) {
     return 1;
 }
 
+bool isDirectiveName(std::string_view name) {
+    static constexpr std::string_view kNames[] = {"define", "undef",  "include", "if",
+                                                  "ifdef",  "ifndef", "elif",    "else",
+                                                  "endif",  "line",   "error",   "pragma"};
+    return std::find(std::begin(kNames), std::end(kNames), name) != std::end(kNames);
+}
+
+// A line that starts with `#` but is no directive (`#(0.06)F` continuing a successor: the
+// turtle's width module). cpfg's preprocessor passes such lines through; mcpp would stop
+// at them, so their `#` is shielded.
+bool startsWithTurtleHash(std::string_view text, std::size_t lineStart) {
+    std::size_t i = lineStart;
+    while (i < text.size() && (text[i] == ' ' || text[i] == '\t')) ++i;
+    if (i >= text.size() || text[i] != '#') return false;
+    std::size_t j = i + 1;
+    if (j >= text.size() || text[j] == '\n' || text[j] == ' ' || text[j] == '\t') return false;
+    if (text[j] != '_' && !std::isalpha(static_cast<unsigned char>(text[j]))) return true;
+    std::size_t e = j;
+    while (e < text.size() && (std::isalnum(static_cast<unsigned char>(text[e])) || text[e] == '_'))
+        ++e;
+    return !isDirectiveName(text.substr(j, e - j));
+}
+
 std::string shield(std::string_view text) {
     std::string out;
     out.reserve(text.size() + text.size() / 8);
+    bool lineStart = true;
+    bool turtleLine = false;
     for (std::size_t i = 0; i < text.size(); ++i) {
         char c = text[i];
-        if (c == '\'')
+        if (lineStart) turtleLine = startsWithTurtleHash(text, i);
+        lineStart = c == '\n';
+        if (c == '#' && turtleLine) {
+            out += kHashShield;
+            turtleLine = false;
+        } else if (c == '\'')
             out += kQuoteShield;
         else if (c == '/' && i + 1 < text.size() && text[i + 1] == '/')
             out += kSlashShield;
@@ -144,6 +175,7 @@ void replaceAll(std::string& s, std::string_view from, std::string_view to) {
 std::string unshield(std::string s) {
     replaceAll(s, kQuoteShield, "'");
     replaceAll(s, kSlashShield, "/");
+    replaceAll(s, kHashShield, "#");
     return s;
 }
 

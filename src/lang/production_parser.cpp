@@ -20,7 +20,8 @@ bool Parser::parsePatterns(const SourceLine& line, std::size_t from, std::size_t
     }
     std::vector<ModuleToken> toks;
     SourceLocation loc = at(line, from);
-    if (!tokenizeModules(part, loc, static_cast<int>(from) + 1, target_.symbols(), toks, diags_))
+    if (!tokenizeModules(part, loc, static_cast<int>(from) + 1, target_.symbols(), toks, diags_,
+                         surfaceLetters_))
         return false;
     for (auto& t : toks) {
         ModulePattern p;
@@ -93,9 +94,14 @@ void Parser::parseProduction(const SourceLine& line, Arrow arrow) {
             return;
         }
     }
-    if (prod.predecessor.front().symbol == '[' || prod.predecessor.front().symbol == ']') {
+    // A predecessor may be a whole branch (`[f(y)P(r)] : r == 0 --> *`, as cpfg allows),
+    // but not a lone bracket or one that starts by closing a branch.
+    const Symbol first = prod.predecessor.front().symbol;
+    if (first == ']' || (first == '[' && prod.predecessor.size() == 1)) {
         diags_.error(prod.predecessor.front().location,
-                     "a predecessor cannot start with a bracket");
+                     first == ']' ? "a predecessor cannot start with ']'"
+                                  : "a predecessor cannot be a lone '[': write the branch "
+                                    "it starts");
         return;
     }
     prod.slotCount = static_cast<int>(formals.size());
@@ -188,7 +194,7 @@ void Parser::parseProduction(const SourceLine& line, Arrow arrow) {
     if (trimView(succ) != "*") {
         std::vector<ModuleToken> toks;
         if (!tokenizeModules(succ, at(line, succFrom), static_cast<int>(succFrom) + 1,
-                             target_.symbols(), toks, diags_))
+                             target_.symbols(), toks, diags_, surfaceLetters_))
             return;
         for (const auto& tok : toks) {
             SuccessorModule m;
@@ -210,15 +216,8 @@ void Parser::parseProduction(const SourceLine& line, Arrow arrow) {
                      "decomposition productions are context-free: remove the context");
         return;
     }
-    // A ']' without its '[' walks out of the branch the predecessor stands in.
-    int depth = 0;
-    for (const auto& m : prod.right) {
-        depth += m.symbol == '[' ? 1 : m.symbol == ']' && depth > 0 ? -1 : 0;
-    }
-    if (depth != 0) {
-        diags_.error(prod.location, "unbalanced '[' in the right context");
-        return;
-    }
+    // A ']' without its '[' walks out of the branch the predecessor stands in; a '['
+    // left open asks only how the next branch begins (`-(a) > [!(w)L`, as cpfg reads it).
     prod.table = currentTable_;
     target_.production(section_ == Section::Decomposition  ? ProductionGroup::Decomposition
                        : section_ == Section::Homomorphism ? ProductionGroup::Homomorphism

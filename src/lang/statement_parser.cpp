@@ -51,8 +51,13 @@ class StatementParser {
     }
 
   private:
+    // A backslash is blank here too: cpfg's lexer drops a character no rule of an
+    // expression matches, so the `\` a macro continued with (`#define w(x) \\`) and one
+    // continuing a line of a block are passed over.
     void skipSpace() {
-        while (pos_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[pos_]))) ++pos_;
+        while (pos_ < text_.size() &&
+               (std::isspace(static_cast<unsigned char>(text_[pos_])) || text_[pos_] == '\\'))
+            ++pos_;
     }
 
     void fail(std::size_t at, const std::string& message) {

@@ -28,6 +28,12 @@ bool isBlank(char c) {
     return c == ' ' || c == '\t' || c == '\r';
 }
 
+std::string_view trimBlanks(std::string_view s) {
+    while (!s.empty() && isBlank(s.front())) s.remove_prefix(1);
+    while (!s.empty() && isBlank(s.back())) s.remove_suffix(1);
+    return s;
+}
+
 class ViewFileReader {
   public:
     ViewFileReader(const std::string& file, ParserTarget& target, DiagnosticList& diags)
@@ -321,6 +327,37 @@ std::string blankComments(std::string_view text) {
 }
 
 }  // namespace
+
+std::vector<std::string> viewFileValues(std::string_view original, std::string_view wanted) {
+    const std::string blanked = blankComments(original);
+    std::vector<std::string> values;
+    std::size_t at = 0;
+    while (at < blanked.size()) {
+        std::size_t end = blanked.find('\n', at);
+        if (end == std::string::npos) end = blanked.size();
+        std::string_view line = std::string_view(blanked).substr(at, end - at);
+        at = end + 1;
+        std::size_t colon = line.find(':');
+        if (colon == std::string_view::npos) continue;
+        if (lower(trimBlanks(line.substr(0, colon))) != wanted) continue;
+        values.emplace_back(trimBlanks(line.substr(colon + 1)));
+    }
+    return values;
+}
+
+bool viewFileGivesBox(std::string_view text) {
+    return !viewFileValues(text, "box").empty();
+}
+
+std::string viewFileSurfaceLetters(std::string_view original) {
+    std::string letters;
+    for (const std::string& rest : viewFileValues(original, "surface")) {
+        std::size_t stop = 0;
+        while (stop < rest.size() && !isBlank(rest[stop])) ++stop;
+        if (stop == 1) letters += rest[0];
+    }
+    return letters;
+}
 
 void parseViewFileInto(std::string_view original, const std::string& fileName, ParserTarget& target,
                        DiagnosticList& diagnostics) {

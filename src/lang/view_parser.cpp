@@ -59,6 +59,10 @@ bool Parser::parseViewSetting(const SourceLine& line, const std::string& kw,
     std::string_view rest = std::string_view(line.text).substr(valueStart);
     std::string_view value = trimView(rest);
     std::size_t lead = firstNonBlank(rest);
+    if (kw == "surface") {
+        std::string_view name = value.substr(0, value.find_first_of(" \t"));
+        if (name.size() == 1) surfaceLetters_ += name[0];
+    }
     ViewSetting setting;
     setting.name = kw;
     setting.location = at(line, valueStart + (lead == std::string_view::npos ? 0 : lead));

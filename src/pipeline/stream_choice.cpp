@@ -38,6 +38,7 @@ DerivationOptions derivationOptions(const Model& model, const DeriveRequest& req
     DerivationOptions opts;
     opts.memoryLimit = request.memoryLimit;
     opts.seed = request.seed;
+    opts.random = request.random;
     opts.threads = request.threads;
     opts.queryResolver = turtleQueryResolver(model.view);
     opts.progress = request.progress;

@@ -4,7 +4,9 @@
 
 #include <cmath>
 
+#include "graftal/core/cpfg_random.hpp"
 #include "graftal/core/parallel.hpp"
+#include "graftal/core/random_stream.hpp"
 #include "output_files.hpp"
 #include "rewriting_engine.hpp"
 
@@ -67,6 +69,18 @@ Derivation::Derivation(LSystem lsystem, DerivationOptions options)
     files_ = std::make_unique<ModelOutputFiles>(std::filesystem::path(lsystem_.file).parent_path());
     rules_->setState(state_.data(), &options_.print, files_.get());
     if (decomposition_) decomposition_->setState(state_.data(), &options_.print, files_.get());
+    if (options_.random.value_or(lsystem_.random) == RandomStreams::Cpfg) {
+        // cpfg's generators, drawn in cpfg's order: every step in string order. Only the
+        // productions draw to choose (decomposition takes the first applicable one).
+        // cpfg's batch run (`cpfg -g -str`, the string it saves) leaves the productions'
+        // state where the C library starts it, whatever `seed:` says; its interactive run
+        // seeds it with seed48 from `seed:`, which a seed given to the derivation stands for.
+        cpfgRandom_ = std::make_unique<CpfgRandom>(
+            options_.seed ? static_cast<long>(*options_.seed & 0xFFFFFFFF) : 0);
+        rules_->useCpfgRandom(cpfgRandom_.get(), lsystem_.hasSeedLine || options_.seed, true);
+        if (decomposition_) decomposition_->useCpfgRandom(cpfgRandom_.get(), false);
+        deferQueries_ = lsystem_.cpfgViewBox;
+    }
     if (!lsystem_.startBlock.empty()) rules_->runBlock(lsystem_.startBlock, nullptr, 0, 0);
     if (!lsystem_.axiomArguments.empty()) {
         // Axiom parameters that read variables see what Start: left in them.
@@ -78,6 +92,9 @@ Derivation::Derivation(LSystem lsystem, DerivationOptions options)
             ctx.files = files_.get();
             ctx.functions = &lsystem_.functions;
             ctx.curves = &lsystem_.curves;
+            ctx.cpfgRandom = cpfgRandom_.get();
+            std::uint64_t draw = 0;
+            ctx.uniform = [&] { return uniformAt(seed, 0, a.module, (a.param << 20) + draw++); };
             current_->setParam(starts[a.module] + a.param, a.value.evaluate({}, &ctx));
         }
     }
@@ -201,16 +218,23 @@ void Derivation::answerQueries(int stepNumber) {
 
 void Derivation::afterStep(int stepNumber) {
     decompose(stepNumber);
-    answerQueries(stepNumber);
+    if (deferQueries_ && queries_)
+        pendingQueries_ = stepNumber;
+    else
+        answerQueries(stepNumber);
 }
 
 void Derivation::step() {
     options_.cancel.check();
+    if (pendingQueries_ >= 0) {
+        answerQueries(pendingQueries_);
+        pendingQueries_ = -1;
+    }
     int stepNumber = steps_ + 1;
     // Cut first, into a scratch string, so that a step that fails leaves current_ intact.
     ModuleString pruned;
     const ModuleString& source =
-        lsystem_.usesCut() && pruneCuts(*current_, pruned) ? pruned : *current_;
+        lsystem_.usesCut() && !cpfgRandom_ && pruneCuts(*current_, pruned) ? pruned : *current_;
     state_[0] = stepNumber;
     if (!lsystem_.startEachBlock.empty())
         rules_->runBlock(lsystem_.startEachBlock, nullptr, stepNumber, 0);
@@ -228,7 +252,7 @@ void Derivation::step() {
 std::vector<std::uint64_t> Derivation::countNextStep() {
     // What happens after the rewriting (decomposition, answers to queries, End each
     // blocks) could change the string, and blocks run per module: those steps are done.
-    if (decomposition_ || queries_ || !lsystem_.startEachBlock.empty() ||
+    if (decomposition_ || queries_ || cpfgRandom_ || !lsystem_.startEachBlock.empty() ||
         !lsystem_.endEachBlock.empty() || !lsystem_.endBlock.empty() || lsystem_.usesCut())
         return {};
     options_.cancel.check();

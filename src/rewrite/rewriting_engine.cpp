@@ -7,6 +7,7 @@
 #include <numeric>
 #include <type_traits>
 
+#include "graftal/core/cpfg_random.hpp"
 #include "graftal/core/parallel.hpp"
 #include "graftal/core/random_stream.hpp"
 #include "rewriting_engine_detail.hpp"
@@ -51,8 +52,14 @@ RewritingEngine::RewritingEngine(const LSystem& ls, const std::vector<Production
     buildQuickChoices();
     // The ContextRewriter's branch handling assumes brackets are seen.
     bool bracketsIgnored = ls.ignored['['] || ls.ignored[']'] || ls.ring;
-    for (const auto& p : productions_)
-        for (const auto& m : p.right) bracketsIgnored |= m.symbol == '=' || m.symbol == ']';
+    for (const auto& p : productions_) {
+        int open = 0;  // a right context may leave a branch open (`> [!L`)
+        for (const auto& m : p.right) {
+            bracketsIgnored |= m.symbol == '=' || m.symbol == ']';
+            open += m.symbol == '[' ? 1 : m.symbol == ']' && open > 0 ? -1 : 0;
+        }
+        bracketsIgnored |= open > 0;
+    }
     if (!fast_ && !multiPred_ && !parametric_ && !bracketsIgnored) {
         context_ = std::make_unique<ContextRewriter>(ls, productions_, candidates_, seed_);
         if (!context_->usable()) context_.reset();
@@ -444,6 +451,7 @@ double RewritingEngine::evaluate(const Expression& e, const double* slots, Draws
     EvalContext ctx;
     ctx.uniform = [&draws] { return draws(); };
     ctx.reseed = [&draws](double x) { draws.reseed(x); };
+    ctx.cpfgRandom = cpfg_;
     ctx.state = state_;
     // Only one thread rewrites when the productions print; elsewhere (parallel steps)
     // warnings are not printed, so the output never depends on the thread count.
@@ -508,6 +516,7 @@ void RewritingEngine::runBlock(const Block& block, double* slots, int stepNumber
 std::int32_t RewritingEngine::choose(const ModuleString& s, std::size_t i, std::uint64_t position,
                                      int stepNumber, int table, double* slots,
                                      std::vector<double>& weights) const {
+    if (cpfg_) return chooseCpfg(s, i, stepNumber, table, slots);
     const auto& cands = candidates_[static_cast<std::size_t>(table)][s.symbol(i)];
     Draws draws{this, static_cast<std::uint64_t>(stepNumber), position, 0};
     const Production* evaluating = nullptr;  // whose block, condition or probability runs
@@ -587,6 +596,63 @@ std::int32_t RewritingEngine::choose(const ModuleString& s, std::size_t i, std::
     return kIdentity;
 }
 
+// cpfg (generate.c): in a stochastic L-system every applicable production (predecessor,
+// contexts, pre block and condition, in file order) adds its probability, a 32-bit float,
+// to the total; one draw scaled by the total is then counted down through them in float
+// arithmetic, and the first that takes it to 0 or below applies. The draw is made at every
+// module, whether any production applies or not. Without `seed:` the first applicable
+// production applies.
+std::int32_t RewritingEngine::chooseCpfg(const ModuleString& s, std::size_t i, int stepNumber,
+                                         int table, double* slots) const {
+    const auto& cands = candidates_[static_cast<std::size_t>(table)][s.symbol(i)];
+    Draws draws{this, static_cast<std::uint64_t>(stepNumber), i, 0};
+    const Production* evaluating = nullptr;
+    try {
+        if (!cpfgStochastic_) {
+            for (std::uint32_t k : cands) {
+                const Production& p = productions_[k];
+                evaluating = &p;
+                if (!matches(p, s, i, slots)) continue;
+                if (!p.preBlock.empty()) runStatements(p.preBlock, slots, draws);
+                if (!p.condition || evaluate(*p.condition, slots, draws) != 0)
+                    return static_cast<std::int32_t>(k);
+            }
+            return kIdentity;
+        }
+        struct Applicable {
+            std::uint32_t production;
+            float probability;
+            std::vector<double> slots;  // as its pre block left them
+        };
+        std::vector<Applicable> applicable;
+        float total = 0;
+        for (std::uint32_t k : cands) {
+            const Production& p = productions_[k];
+            evaluating = &p;
+            if (!matches(p, s, i, slots)) continue;
+            if (!p.preBlock.empty()) runStatements(p.preBlock, slots, draws);
+            if (p.condition && evaluate(*p.condition, slots, draws) == 0) continue;
+            const float w =
+                p.probability ? static_cast<float>(evaluate(*p.probability, slots, draws)) : 1.0f;
+            total += w;
+            applicable.push_back({k, w, std::vector<double>(slots, slots + maxSlots_)});
+        }
+        float u = static_cast<float>(static_cast<double>(total) * cpfg_->production());
+        for (const Applicable& a : applicable) {
+            u -= a.probability;
+            if (u <= 0) {
+                std::copy(a.slots.begin(), a.slots.end(), slots);
+                return static_cast<std::int32_t>(a.production);
+            }
+        }
+    } catch (const Error& err) {
+        std::vector<Diagnostic> ds = err.diagnostics();
+        if (evaluating && !ds.empty()) ds.back().location = evaluating->location;
+        throw Error(std::move(ds));
+    }
+    return kIdentity;
+}
+
 bool RewritingEngine::rewrites(Symbol s) const {
     for (const auto& t : candidates_)
         if (s < t.size() && !t[s].empty()) return true;
@@ -652,6 +718,17 @@ bool RewritingEngine::stepSequential(const ModuleString& cur, ModuleString& next
         try {
             if (!activeIn || (*activeIn)[i])
                 k = choose(cur, i, i, stepNumber, table, slots.data(), weights);
+            if (k == kIdentity && cpfgCuts_ && cur.symbol(i) == '%') {
+                // cpfg: the rest of the branch is left out, up to the ']' that closes it.
+                int level = 1;
+                while (i + 1 < n) {
+                    const Symbol c = cur.symbol(i + 1);
+                    if (c == '[') ++level;
+                    if (c == ']' && --level == 0) break;
+                    ++i;
+                }
+                continue;
+            }
             if (k == kIdentity) {
                 out.push(cur.symbol(i), cur.params(i));
                 if (activeOut) activeOut->push_back(0);

@@ -17,6 +17,8 @@
 
 namespace graftal {
 
+class CpfgRandom;
+
 class RewritingEngine {
   public:
     RewritingEngine(const LSystem& ls, const std::vector<Production>& productions,
@@ -33,6 +35,21 @@ class RewritingEngine {
 
     // The L-system's state (LSystem::stateNames) that blocks and expressions read and
     // write, and where printf writes. Without it, expressions that need them fail.
+    // Draw cpfg's random numbers from `random` (cpfg_random.hpp), in cpfg's order: modules
+    // are rewritten one after the other; when `stochastic` (cpfg: the file has a `seed:`
+    // line) every module draws once to choose among its applicable productions, each
+    // weighted by its probability (1 when it has none); otherwise the first applicable
+    // production applies and probabilities are not read.
+    // With `cuts`, a `%` no production rewrites cuts its branch as the step reaches it (cpfg
+    // cuts there, so the modules before it see the whole string in their contexts).
+    void useCpfgRandom(CpfgRandom* random, bool stochastic, bool cuts = false) {
+        cpfg_ = random;
+        cpfgStochastic_ = stochastic;
+        cpfgCuts_ = cuts;
+        sequential_ = true;
+        parametric_ = true;
+    }
+
     void setState(double* state, const std::function<void(std::string_view)>* print,
                   OutputFiles* files = nullptr) {
         state_ = state;
@@ -84,6 +101,9 @@ class RewritingEngine {
     std::int32_t choose(const ModuleString& s, std::size_t i, std::uint64_t position,
                         int stepNumber, int table, double* slots,
                         std::vector<double>& weights) const;
+    // choose() the way cpfg chooses, on cpfg's generators (useCpfgRandom).
+    std::int32_t chooseCpfg(const ModuleString& s, std::size_t i, int stepNumber, int table,
+                            double* slots) const;
     bool matches(const Production& p, const ModuleString& s, std::size_t i, double* slots) const;
     bool matchLeft(const Production& p, const ModuleString& s, std::size_t i, double* slots,
                    int& slot) const;
@@ -128,6 +148,9 @@ class RewritingEngine {
     // Productions with blocks or printf: modules are rewritten one after the other, in
     // string order, on one thread (what a block writes is seen by the modules after it).
     bool sequential_ = false;
+    CpfgRandom* cpfg_ = nullptr;  // cpfg's generators (useCpfgRandom), or graftal's streams
+    bool cpfgStochastic_ = false;
+    bool cpfgCuts_ = false;
     double* state_ = nullptr;
     const std::function<void(std::string_view)>* print_ = nullptr;
     OutputFiles* files_ = nullptr;

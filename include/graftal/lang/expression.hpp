@@ -30,11 +30,16 @@ class OutputFiles {
 
 // What a running expression may need besides its variables: random numbers from the
 // L-system's counter-based stream. Deterministic code passes nullptr.
+class CpfgRandom;
+
 struct EvalContext {
     // Returns a uniform number in [0, 1); called once per ran()/nran() evaluation.
     std::function<double()> uniform;
     // srand(seed): restarts the stream that uniform() draws from at `seed`.
     std::function<void(double)> reseed;
+    // When set, ran, nran, bran, biran and srand are cpfg's own, on cpfg's generator
+    // (cpfg_random.hpp), in place of uniform() and reseed().
+    CpfgRandom* cpfgRandom = nullptr;
     // The L-system's state (LSystem::stateNames): read by names that are not parameters.
     const double* state = nullptr;
     // Where printf writes (the library never prints itself). nullptr: output is dropped.

@@ -97,6 +97,8 @@ struct ModuleAge {
     SourceLocation location;
 };
 
+enum class RandomStreams { Graftal, Cpfg };
+
 class LSystem {
   public:
     std::string name;  // the `Lsystem:` label (the file name if none)
@@ -117,6 +119,19 @@ class LSystem {
     // complement here, so the engine only ever looks at this table.
     std::vector<bool> ignored = std::vector<bool>(kMaxSymbols, false);
     std::uint64_t seed = 0;
+    // A `seed:` line was given: for cpfg this is what makes an L-system stochastic (without
+    // it cpfg ignores the probabilities and applies the first applicable production).
+    bool hasSeedLine = false;
+    // Whose random numbers a derivation draws: graftal's counter-based streams (the same
+    // string for any thread count) or cpfg's own generators in cpfg's order
+    // (graftal/core/cpfg_random.hpp). `random: cpfg` in the .l sets Cpfg, and so does
+    // loadModel() for a model read with a cpfg view file; DerivationOptions::random wins.
+    RandomStreams random = RandomStreams::Graftal;
+    bool randomLine = false;  // the .l file has a `random:` line
+    // The view file gives cpfg's `box:`: cpfg then computes no view volume, which is the
+    // interpretation that fills the query modules of its last string, so that string shows
+    // them as the step before left them. With cpfg's random numbers graftal does the same.
+    bool cpfgViewBox = false;
     // `ring lsystem`: for context matching the string is a ring (its last module is
     // followed by its first).
     bool ring = false;
@@ -173,6 +188,10 @@ struct ParseOptions {
     // A cpfg view file (.v) read after the .l (loadModel only). Its settings win over the
     // same settings in the .l, as cpfg reads view settings only from the view file.
     std::string viewFile;
+    // The one-letter surface names the view file declares (`surface: L leaf.s`), known
+    // before the .l is read so that `~LF` is the surface L then F, as in cpfg. parse() with
+    // a view file's text and loadModel() fill it in.
+    std::string surfaceLetters;
 };
 
 // The grammar of .l text, for programs that only rewrite: parse(text, options) (model.hpp)

@@ -42,6 +42,8 @@ ParseResult parse(std::string_view text, const ParseOptions& options);
 
 // Parses .l text, then the text of the cpfg view file read with it (its settings win, as in
 // loadModel). `viewFileName` names the view file in diagnostics and finds the files it names.
+// The view file's problems are warnings (cpfg forgives its view files): a value that cannot
+// be used leaves its setting as it was; only the .l text's errors make the result fail.
 ParseResult parse(std::string_view text, std::string_view viewText, const std::string& viewFileName,
                   const ParseOptions& options);
 

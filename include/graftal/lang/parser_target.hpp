@@ -88,6 +88,8 @@ class ParserTarget {
                                const SourceLocation& where) = 0;
     virtual void derivationLength(int steps, const SourceLocation& where) = 0;
     virtual void seed(std::uint64_t seed, const SourceLocation& where) = 0;
+    // `random: cpfg` or `random: graftal`: whose random numbers the derivation draws.
+    virtual void randomStreams(RandomStreams, const SourceLocation&) {}
     // `ignore:` (consider = false) or `consider:` (true) with the symbols listed.
     virtual void ignore(const std::vector<Symbol>& symbols, bool consider,
                         const SourceLocation& where) = 0;
@@ -126,6 +128,7 @@ class ModelBuilder : public ParserTarget {
                        const SourceLocation& where) override;
     void derivationLength(int steps, const SourceLocation& where) override;
     void seed(std::uint64_t seed, const SourceLocation& where) override;
+    void randomStreams(RandomStreams streams, const SourceLocation& where) override;
     void ignore(const std::vector<Symbol>& symbols, bool consider,
                 const SourceLocation& where) override;
     void environmentLine(EnvironmentLine line) override;

@@ -37,6 +37,8 @@ struct DeriveRequest {
     std::optional<int> steps;     // empty: the file's derivation length
     std::optional<int> maxSteps;  // the most steps a front end allows (the studio's limit)
     std::optional<std::uint64_t> seed;
+    // Whose random numbers (`--random cpfg|graftal`); empty: as the model says.
+    std::optional<RandomStreams> random;
     unsigned threads = 0;  // 0: one per core
     std::size_t memoryLimit = std::size_t(2) << 30;
     StreamPolicy stream = StreamPolicy::Auto;

@@ -32,7 +32,10 @@ struct DerivationOptions {
     // anything is allocated, with a message saying how large the string would get.
     std::size_t memoryLimit = std::size_t(2) << 30;
     std::optional<std::uint64_t> seed;  // overrides the file's seed
-    unsigned threads = 0;               // 0: one per core. The output never depends on it.
+    // Overrides LSystem::random: cpfg's generators (the string cpfg gives; the steps then
+    // run in string order on one thread) or graftal's streams.
+    std::optional<RandomStreams> random;
+    unsigned threads = 0;  // 0: one per core. The output never depends on it.
     // Answers ?E modules. nullptr: the one the file's `environment:` lines describe (if any).
     Environment* environment = nullptr;
     // Called after every step with the step number and the string's size (for progress).
@@ -94,9 +97,15 @@ class Derivation {
     DerivationOptions options_;
     std::unique_ptr<ModuleString> current_, next_;
     std::unique_ptr<class RewritingEngine> rules_, decomposition_;
+    std::unique_ptr<class CpfgRandom> cpfgRandom_;  // cpfg's generators, when drawn from
     std::unique_ptr<Environment> ownedEnvironment_;
     Environment* environment_ = nullptr;
     bool queries_ = false;
+    // cpfg with a view file's `box:` writes its string before interpreting it: the query
+    // modules a step makes are answered when the next step begins, and never after the
+    // last (set for cpfg's random numbers and LSystem::cpfgViewBox).
+    bool deferQueries_ = false;
+    int pendingQueries_ = -1;  // the step whose queries wait, or -1
     bool finished_ = false;
     int steps_ = 0;
     std::vector<double> state_;
