@@ -1,7 +1,9 @@
 // Destinations of written bytes (destination.hpp).
 #include "graftal/core/destination.hpp"
 
+#ifndef __EMSCRIPTEN__
 #include <sys/mman.h>
+#endif
 #include <unistd.h>
 
 #include <atomic>
@@ -62,14 +64,28 @@ namespace {
 class MemoryFile {
   public:
     explicit MemoryFile(const fs::path& destination) {
+#ifdef __EMSCRIPTEN__
+        // The WebAssembly build's files are all in memory (MEMFS): a file there is one.
+        static std::atomic<unsigned> counter{0};
+        path_ = "/tmp/graftal-output-" + std::to_string(counter++);
+        (void)destination;
+#else
         fd_ = ::memfd_create("graftal-output", MFD_CLOEXEC);
         if (fd_ < 0)
             throw fileError(destination,
                             std::string("cannot write: no memory file (") + std::strerror(errno) +
                                 ")");
         path_ = "/proc/self/fd/" + std::to_string(fd_);
+#endif
     }
-    ~MemoryFile() { ::close(fd_); }
+    ~MemoryFile() {
+#ifdef __EMSCRIPTEN__
+        std::error_code ec;
+        fs::remove(path_, ec);
+#else
+        ::close(fd_);
+#endif
+    }
     MemoryFile(const MemoryFile&) = delete;
     MemoryFile& operator=(const MemoryFile&) = delete;
     const fs::path& path() const { return path_; }
