@@ -41,7 +41,9 @@ ExportResult writeAnimation(const ExportFormat& format, const Model& model,
     animation.output.clear();  // the destination is the output
     const AnimationResult a =
         writeAnimationTo(model, animation,
-                         *animationFormatFor("animation" + std::string(format.extension)),
+                         format.name == "gif"    ? AnimationFormat::Gif
+                         : format.name == "webp" ? AnimationFormat::WebP
+                                                 : AnimationFormat::Mp4,
                          destination);
     return ExportResult{a.to, a.route, a.notes, {}};
 }
@@ -60,6 +62,19 @@ ExportResult writeFrames(const ExportFormat&, const Model& model, const ExportRe
     return ExportResult{a.to, a.route, a.notes, {}};
 }
 
+// The music layer's format of a music row (the engraved scores share their extensions with
+// the pictures: the row's name says which it is).
+MusicFormat musicFormatOf(const ExportFormat& format) {
+    const std::string_view name = format.name;
+    if (name == "mid") return MusicFormat::Midi;
+    if (name == "wav") return MusicFormat::Wav;
+    if (name == "ly") return MusicFormat::LilyPond;
+    if (name == "score-pdf") return MusicFormat::Pdf;
+    if (name == "score-png") return MusicFormat::Png;
+    if (name == "score-svg") return MusicFormat::Svg;
+    return MusicFormat::MusicXml;
+}
+
 // The curve the turtle draws, read as a score (LSFP ch. 6.3) by the music layer, written by
 // its writer of the row's extension.
 ExportResult writeMusic(const ExportFormat& format, const Model& model,
@@ -68,14 +83,7 @@ ExportResult writeMusic(const ExportFormat& format, const Model& model,
                                        request.music.value_or(musicOptions(model.view)),
                                        derivationOptions(model, request));
     request.cancel.check();
-    // The engraved scores share their extensions with the pictures: their row's name says
-    // which they are.
-    const std::string name(format.name);
-    const MusicFormat music = name == "score-pdf"   ? MusicFormat::Pdf
-                              : name == "score-png" ? MusicFormat::Png
-                              : name == "score-svg" ? MusicFormat::Svg
-                                                    : *musicFormatFor("score" + std::string(format.extension));
-    writeScore(score, music, destination, request.audio);
+    writeScore(score, musicFormatOf(format), destination, request.audio);
     return ExportResult{requestedSteps(model, request), RenderRoute::LineArt, {}, {}};
 }
 

@@ -5,6 +5,7 @@
 // in the sources the web build leaves out (cairo_writer, raytrace_*, streamed_*, the
 // animation encoders and animation.cpp, derivation_diagram_writer, the music writers).
 #include <filesystem>
+#include <optional>
 #include <ostream>
 #include <span>
 #include <string>
@@ -62,17 +63,24 @@ void writeDerivationDiagram(const std::vector<ModuleString>&, const SymbolTable&
                             const RenderOptions&, const std::filesystem::path&) {
     unavailable("a derivation diagram");
 }
+void writeDerivationDiagram(const DerivationDiagram&, ImageFormat, const Destination&) {
+    unavailable("a derivation diagram");
+}
+void writeDerivationDiagram(const std::vector<ModuleString>&, const SymbolTable&,
+                            const RenderOptions&, ImageFormat, const Destination&) {
+    unavailable("a derivation diagram");
+}
 
 // Streamed and summarised PNGs (Cairo): the web build never streams a picture.
 bool streamedPictureIsSummarised(const Model&, int, std::size_t, const RenderOptions&) {
     return false;
 }
 void renderStreamedPng(const Model&, int, const DerivationOptions&, const RenderOptions&,
-                       const std::filesystem::path&) {
+                       const Destination&) {
     unavailable("a picture of a string too large to hold");
 }
 void renderSummarisedPng(const Model&, const SubtreeSummaries&, const RenderOptions&,
-                         const std::filesystem::path&, double, double) {
+                         const Destination&, double, double) {
     unavailable("a picture of a string too large to hold");
 }
 
@@ -104,11 +112,20 @@ void checkAnimationRequest(const AnimationRequest&) { unavailable("an animation"
 AnimationResult writeAnimationFile(const Model&, const AnimationRequest&) {
     unavailable("an animation");
 }
+AnimationResult writeAnimationTo(const Model&, const AnimationRequest&, AnimationFormat,
+                                 const Destination&) {
+    unavailable("an animation");
+}
 
 // libsmf, FluidSynth, LilyPond: music files but MusicXML.
 void writeScore(const Score& score, const std::filesystem::path& path, const AudioOptions&) {
     if (path.extension() == ".musicxml") return writeMusicXml(score, path);
     unavailable("a " + path.extension().string() + " score");
+}
+void writeScore(const Score& score, MusicFormat format, const Destination& destination,
+                const AudioOptions&) {
+    if (format == MusicFormat::MusicXml) return writeMusicXml(score, destination);
+    unavailable("a score other than MusicXML");
 }
 
 }  // namespace graftal
