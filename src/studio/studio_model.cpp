@@ -355,11 +355,13 @@ std::string meshGlb(const StudioPicture& picture, const fs::path& /*scratch*/) {
 
 const std::vector<std::string>& exportFormats() {
     // The registry's formats that a download can hold (not a folder of frames), but the
-    // engraved scores, which need LilyPond and take seconds.
+    // engraved scores, which need LilyPond and take seconds, and the derived string as text
+    // (the page shows the string itself).
     static const std::vector<std::string> formats = [] {
         std::vector<std::string> names;
         for (const ExportFormat& f : graftal::exportFormats())
-            if (!f.fileOnly && f.name.find('-') == std::string_view::npos)
+            if (!f.fileOnly && f.name.find('-') == std::string_view::npos &&
+                f.kind != ExportKind::String)
                 names.emplace_back(f.name);
         return names;
     }();
