@@ -152,8 +152,8 @@ TEST(StreamedRuns, TheSameStringAsTheDerivationInOrder) {
         "Lsystem: 1\nderivation length: 9\naxiom: X\nX --> F[+X]F[-Y]+X\nY --> Z\nZ --> apex\n"
         "F --> FF\nendlsystem\n",
         // Tables: the successor depends on the step.
-        "Lsystem: 1\nderivation length: 8\ntables: T1 T2\ntable schedule: T1 T2\naxiom: A\n"
-        "table T1:\nA --> AB\ntable T2:\nA --> BA\nB --> BB\nendlsystem\n",
+        "Lsystem: 1\nderivation length: 8\naxiom: A\ntable: one\nA --> AB\ntable: two\n"
+        "A --> BA\nB --> BC\ntable schedule: one 1, two 2, repeat\nendlsystem\n",
     };
     for (const char* text : systems) {
         const Model m = modelOf(text);
