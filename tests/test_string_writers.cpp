@@ -120,7 +120,8 @@ TEST(StringJsonWriter, ChunksMeetWhereTheyShould) {
     EXPECT_EQ(jsonOf(s, t, 3), one);
     EXPECT_NE(one.find("\"params\": [1048575.5]},\n    {\"symbol\": \"A\", \"params\": [1048576]}"),
               std::string::npos);
-    EXPECT_EQ(one.substr(one.size() - 45), "{\"symbol\": \"A\", \"params\": [1099999.5]}\n  ]\n}\n");
+    EXPECT_EQ(one.substr(one.size() - 45),
+              "{\"symbol\": \"A\", \"params\": [1099999.5]}\n  ]\n}\n");
 }
 
 TEST(StringWriters, StreamedBytesEqualTheHeldOnes) {
@@ -172,11 +173,10 @@ TEST(StreamedRuns, TheSameStringAsTheDerivationInOrder) {
         EXPECT_LT(runs, held.size()) << text;
     }
     // Parameters and random choices depend on a module's place: not in runs.
-    EXPECT_FALSE(streamsInRuns(modelOf("Lsystem: 1\naxiom: A(1)\nA(x) --> A(x+1)\nendlsystem\n")
-                                   .lsystem));
     EXPECT_FALSE(
-        streamsInRuns(modelOf("Lsystem: 1\naxiom: A\nA --> AB : 0.5\nA --> B : 0.5\nendlsystem\n")
-                          .lsystem));
+        streamsInRuns(modelOf("Lsystem: 1\naxiom: A(1)\nA(x) --> A(x+1)\nendlsystem\n").lsystem));
+    EXPECT_FALSE(streamsInRuns(
+        modelOf("Lsystem: 1\naxiom: A\nA --> AB : 0.5\nA --> B : 0.5\nendlsystem\n").lsystem));
 }
 
 TEST(ExportRegistry, TheDerivedStringIsARowOfItsOwnKind) {
@@ -189,8 +189,8 @@ TEST(ExportRegistry, TheDerivedStringIsARowOfItsOwnKind) {
     EXPECT_EQ(std::count(downloads.begin(), downloads.end(), "text"), 0);
     EXPECT_EQ(std::count(downloads.begin(), downloads.end(), "json"), 0);
 
-    const Model m = modelOf(
-        "Lsystem: 1\nderivation length: 2\naxiom: A(1)\nA(x) --> A(x/2)B\nendlsystem\n");
+    const Model m =
+        modelOf("Lsystem: 1\nderivation length: 2\naxiom: A(1)\nA(x) --> A(x/2)B\nendlsystem\n");
     std::string text, json;
     ExportRequest request;
     exportModel(m, Destination::memory(text, "a.txt"), request);

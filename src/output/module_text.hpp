@@ -97,7 +97,8 @@ inline constexpr std::size_t kParameterRoom = kNumberTextCapacity + 2;
 struct SymbolNames {
     explicit SymbolNames(const SymbolTable& table) {
         names.resize(kMaxSymbols);
-        for (std::size_t s = 0; s < table.size(); ++s) names[s] = table.name(static_cast<Symbol>(s));
+        for (std::size_t s = 0; s < table.size(); ++s)
+            names[s] = table.name(static_cast<Symbol>(s));
     }
     static bool isOwnText(std::span<const Symbol> run) {
         unsigned high = 0;

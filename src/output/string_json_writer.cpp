@@ -24,8 +24,9 @@ constexpr std::size_t kStreamPiece = std::size_t(4) << 20;
 struct JsonLines {
     explicit JsonLines(const SymbolTable& table) : heads(kMaxSymbols) {
         for (std::size_t s = 0; s < table.size(); ++s)
-            heads[s] = ",\n    {\"symbol\": " + nlohmann::json(table.name(static_cast<Symbol>(s))).dump() +
-                       ", \"params\": [";
+            heads[s] =
+                ",\n    {\"symbol\": " + nlohmann::json(table.name(static_cast<Symbol>(s))).dump() +
+                ", \"params\": [";
     }
     std::vector<std::string> heads;
     static constexpr std::string_view kTail = "]}";
@@ -133,8 +134,7 @@ void StringJsonStream::module(Symbol symbol, std::span<const double> params) {
         formatModule(st.buffer, st.lines, symbol, st.first, st.singles.data(), params.size(),
                      st.cache);
     } else {
-        formatModule(st.buffer, st.lines, symbol, st.first, params.data(), params.size(),
-                     st.cache);
+        formatModule(st.buffer, st.lines, symbol, st.first, params.data(), params.size(), st.cache);
     }
     st.first = false;
     st.maybeFlush();

@@ -79,8 +79,7 @@ void writeStringText(const ModuleString& string, const SymbolTable& symbols, std
             if (string.precision() == Precision::Single)
                 formatParametric(string, string.floatParams().data(), names, b, e, buffer, cache);
             else
-                formatParametric(string, string.doubleParams().data(), names, b, e, buffer,
-                                 cache);
+                formatParametric(string, string.doubleParams().data(), names, b, e, buffer, cache);
             return true;
         },
         [&](std::size_t b, std::size_t e) {

@@ -107,9 +107,8 @@ class RunWalker {
     // The successor that rewrites `s` standing in string d (by step d + 1).
     std::span<const Symbol> successor(int d, Symbol s) const {
         const std::size_t tables = successors_.size() / symbolCount_;
-        const std::size_t t =
-            std::min<std::size_t>(static_cast<std::size_t>(std::max(0, ls_.tableForStep(d + 1))),
-                                  tables - 1);
+        const std::size_t t = std::min<std::size_t>(
+            static_cast<std::size_t>(std::max(0, ls_.tableForStep(d + 1))), tables - 1);
         return successors_[t * symbolCount_ + s];
     }
     // The final modules of `s` standing in string d, kept when there is room.
