@@ -182,30 +182,43 @@ std::string formatBytes(double b) {
     return buf;
 }
 
+namespace {
+
+char* copyText(char* out, const char* text) {
+    while (*text) *out++ = *text++;
+    return out;
+}
+
+}  // namespace
+
+char* formatNumberTo(char* out, double v) {
+    if (v == 0) return copyText(out, "0");  // also folds -0
+    if (std::isnan(v)) return copyText(out, "nan");
+    if (std::isinf(v)) return copyText(out, v > 0 ? "inf" : "-inf");
+    char* end = out + kNumberTextCapacity;
+    if (std::fabs(v) < 1e15 && v == std::trunc(v))
+        return std::to_chars(out, end, static_cast<long long>(v)).ptr;
+    return numberToChars(out, end, v).ptr;
+}
+
+char* formatSingleTo(char* out, float v) {
+    if (v == 0) return copyText(out, "0");
+    if (std::isnan(v)) return copyText(out, "nan");
+    if (std::isinf(v)) return copyText(out, v > 0 ? "inf" : "-inf");
+    char* end = out + kNumberTextCapacity;
+    if (std::fabs(v) < 1e15f && v == std::trunc(v))
+        return std::to_chars(out, end, static_cast<long long>(v)).ptr;
+    return numberToChars(out, end, v).ptr;
+}
+
 std::string formatNumber(double v) {
-    if (v == 0) return "0";  // also folds -0
-    if (std::isnan(v)) return "nan";
-    if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-    char buf[64];
-    if (std::fabs(v) < 1e15 && v == std::trunc(v)) {
-        auto r = std::to_chars(buf, buf + sizeof buf, static_cast<long long>(v));
-        return std::string(buf, r.ptr);
-    }
-    auto r = numberToChars(buf, buf + sizeof buf, v);
-    return std::string(buf, r.ptr);
+    char buf[kNumberTextCapacity];
+    return std::string(buf, formatNumberTo(buf, v));
 }
 
 std::string formatSingle(float v) {
-    if (v == 0) return "0";
-    if (std::isnan(v)) return "nan";
-    if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-    char buf[64];
-    if (std::fabs(v) < 1e15f && v == std::trunc(v)) {
-        auto r = std::to_chars(buf, buf + sizeof buf, static_cast<long long>(v));
-        return std::string(buf, r.ptr);
-    }
-    auto r = numberToChars(buf, buf + sizeof buf, v);
-    return std::string(buf, r.ptr);
+    char buf[kNumberTextCapacity];
+    return std::string(buf, formatSingleTo(buf, v));
 }
 
 std::string formatParameter(ParamView params, std::size_t k) {

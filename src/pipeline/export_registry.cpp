@@ -8,6 +8,7 @@
 
 #include "graftal/core/atomic_file.hpp"
 #include "graftal/output/output.hpp"
+#include "string_export.hpp"
 
 namespace graftal {
 
@@ -114,6 +115,10 @@ constexpr ExportFormat kFormats[] = {
      false, writeMusic},
     {"score-svg", ".svg", ExportKind::Music, "the score engraved by LilyPond (SVG)", false, false,
      false, writeMusic},
+    {"text", ".txt", ExportKind::String, "the derived string as the L-system file writes modules",
+     false, false, false, writeDerivedString},
+    {"json", ".json", ExportKind::String, "the derived string as JSON, one object per module",
+     false, false, false, writeDerivedString},
 };
 
 std::string lowered(std::string_view text) {
@@ -135,6 +140,8 @@ std::string_view exportKindName(ExportKind kind) {
             return "animation";
         case ExportKind::Music:
             return "music file";
+        case ExportKind::String:
+            return "string";
     }
     return "file";
 }

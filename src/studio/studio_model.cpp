@@ -354,10 +354,12 @@ std::string meshGlb(const StudioPicture& picture, const fs::path& /*scratch*/) {
 }
 
 const std::vector<const ExportFormat*>& studioExportFormats() {
+    // The derived string as text is left out: the page shows the string itself, and a
+    // download of all of it may be far larger than the studio's limits.
     static const std::vector<const ExportFormat*> formats = [] {
         std::vector<const ExportFormat*> rows;
         for (const ExportFormat& f : graftal::exportFormats())
-            if (!f.fileOnly) rows.push_back(&f);
+            if (!f.fileOnly && f.kind != ExportKind::String) rows.push_back(&f);
         return rows;
     }();
     return formats;

@@ -232,6 +232,12 @@ std::string formatNumber(double v);
 std::string formatSingle(float v);
 // Parameter k of a module as a string prints it (formatSingle for stored floats).
 std::string formatParameter(ParamView params, std::size_t k);
+// The same texts written at `out`, which has room for kNumberTextCapacity characters;
+// return the end. The writers of strings of billions of parameters use these (no string
+// per number).
+inline constexpr std::size_t kNumberTextCapacity = 32;
+char* formatNumberTo(char* out, double v);
+char* formatSingleTo(char* out, float v);
 
 // Appends one module as a string prints it: its name, then "(a,b,...)" when it has
 // parameters.

@@ -27,6 +27,7 @@ enum class ExportKind {
     Mesh,       // a 3D file (.obj .ply .glb)
     Animation,  // the development as frames (.gif .webp .mp4, a folder of PNG frames)
     Music,      // the curve read as a score (.mid .wav .musicxml .ly, an engraved score)
+    String,     // the derived module string itself, as text or JSON (`graftal derive`)
 };
 
 // Every option of every writer; each writer reads what concerns it. The derivation, picture
@@ -41,6 +42,10 @@ struct ExportRequest : AnimationRequest {
     AudioOptions audio;
     // Map L-systems: geometry, outline and drawing.
     MapRequest map;
+    // The derived string: after the homomorphism (`derive --homo`), and the input's name in
+    // its JSON (empty: the model's file).
+    bool homomorphism = false;
+    std::string inputName;
 };
 
 // What a writer did: the steps drawn, the route taken, its notes and an OBJ's materials

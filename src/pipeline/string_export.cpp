@@ -1,0 +1,74 @@
+// The derived string as text or JSON (string_export.hpp). Held when the homomorphism is
+// asked for or the L-system cannot be streamed; otherwise streamed depth first, in bounded
+// memory: in runs when nothing depends on a module's position (the D0L case, at memory
+// speed), module by module when the prediction says the string would not fit.
+#include "string_export.hpp"
+
+#include "graftal/output/string_json_writer.hpp"
+#include "graftal/output/string_text_writer.hpp"
+#include "graftal/rewrite/streamed_runs.hpp"
+#include "graftal/rewrite/streaming.hpp"
+
+namespace graftal {
+
+namespace {
+
+// Streams the string into `sink` (StringTextStream or StringJsonStream).
+template <class Sink>
+void streamInto(Sink& sink, const Model& model, int steps, bool inRuns,
+                const DerivationOptions& options) {
+    if (inRuns)
+        streamDerivationRuns(
+            model.lsystem, steps, [&](std::span<const Symbol> run) { sink.run(run); }, options);
+    else
+        streamDerivation(model.lsystem, steps, sink, options);
+    sink.finish();
+}
+
+}  // namespace
+
+ExportResult writeDerivedString(const ExportFormat& format, const Model& model,
+                                const ExportRequest& request, const Destination& destination) {
+    const bool json = format.name == "json";
+    const std::string what = json ? "JSON" : "string";
+    const int steps = requestedSteps(model, request);
+    ExportResult result;
+    result.steps = steps;
+    // The string after the homomorphism needs the whole string.
+    const bool canStream = !request.homomorphism;
+    const bool streamed =
+        shouldStream(model, steps, request, canStream, false, false, result.notes);
+    const bool inRuns = canStream && streamsInRuns(model.lsystem);
+    const SymbolTable& symbols = model.lsystem.symbols;
+    const StringJsonHeader header{
+        request.inputName.empty() ? model.lsystem.file : request.inputName, steps};
+    if (streamed || inRuns) {
+        const DerivationOptions options = derivationOptions(model, request);
+        destination.write(what, [&](std::ostream& out) {
+            if (json) {
+                StringJsonStream sink(symbols, header, request.precision, out);
+                streamInto(sink, model, steps, inRuns, options);
+            } else {
+                StringTextStream sink(symbols, request.precision, out);
+                streamInto(sink, model, steps, inRuns, options);
+            }
+        });
+        return result;
+    }
+    DeriveRequest derive = request;
+    derive.steps = steps;
+    Derived d = derived(model, derive);
+    if (request.homomorphism)
+        d.modules = applyHomomorphism(model.lsystem, d.modules, derivationOptions(model, request));
+    request.cancel.check();
+    destination.write(what, [&](std::ostream& out) {
+        if (json)
+            writeStringJson(d.modules, symbols, header, out, request.threads);
+        else
+            writeStringText(d.modules, symbols, out, request.threads);
+    });
+    result.notes.insert(result.notes.end(), d.notes.begin(), d.notes.end());
+    return result;
+}
+
+}  // namespace graftal
