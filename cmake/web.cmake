@@ -33,7 +33,7 @@ set(GRAFTAL_WEB_SOURCES
   src/lang/parser.cpp src/lang/production_parser.cpp src/lang/statement_parser.cpp
   src/lang/view_parser.cpp src/lang/view_file.cpp src/lang/lsystem.cpp src/lang/model.cpp
   src/lang/model_builder.cpp src/lang/view_settings.cpp src/lang/view_setting_lookup.cpp
-  src/lang/limited_preprocessor.cpp src/lang/graphical_function.cpp
+  src/lang/limited_preprocessor.cpp src/lang/graphical_function.cpp src/lang/vlab_specifications.cpp
   src/lang/contour_file.cpp src/lang/curve_xyz.cpp src/lang/curve_setting.cpp
   # rewrite
   src/rewrite/bracket_index.cpp src/rewrite/rewriting_engine.cpp
@@ -41,7 +41,7 @@ set(GRAFTAL_WEB_SOURCES
   src/rewrite/derivation.cpp src/rewrite/growth_prediction.cpp src/rewrite/streaming.cpp
   src/rewrite/output_files.cpp src/rewrite/environment.cpp
   src/rewrite/environment_obstacles.cpp src/rewrite/environment_occupancy.cpp
-  src/rewrite/environment_process.cpp
+  src/rewrite/environment_process.cpp src/rewrite/streamed_runs.cpp
   # geometry
   src/geometry/scene.cpp src/geometry/kolam_dots.cpp src/geometry/mesh.cpp
   src/geometry/mesh_scene.cpp src/geometry/mesh_scene_builder.cpp
@@ -64,12 +64,13 @@ set(GRAFTAL_WEB_SOURCES
   src/output/obj_writer.cpp src/output/ply_writer.cpp src/output/gltf_writer.cpp
   src/output/mesh_scene_writers.cpp src/output/glb_builder.cpp
   src/output/instance_transform.cpp src/output/image_file.cpp
+  src/output/string_text_writer.cpp src/output/string_json_writer.cpp
   # music: the score and its text notations
   src/music/score.cpp src/music/notation.cpp src/music/musicxml_writer.cpp
   # pipeline
   src/pipeline/stream_choice.cpp src/pipeline/stages.cpp src/pipeline/statistics.cpp
   src/pipeline/export_registry.cpp src/pipeline/render.cpp src/pipeline/module_ages.cpp
-  src/pipeline/mesh_quality.cpp
+  src/pipeline/mesh_quality.cpp src/pipeline/string_export.cpp
   # the studio's computations (no server)
   src/studio/studio_model.cpp src/studio/line_buffer.cpp src/studio/zip_archive.cpp
   # the web front end
