@@ -76,6 +76,21 @@ set(GRAFTAL_WEB_SOURCES
   # the web front end
   src/web/native_only.cpp src/web/engine.cpp)
 
+# The library's sources the web build leaves out, each for the native library it needs (or,
+# for the preprocessor, mcpp: the web build has src/lang/limited_preprocessor.cpp). Every
+# source of the layers is in one list or the other: scripts/web_sources.py checks it
+# (ctest: Web.SourceList), so that a new source file is not forgotten here.
+set(GRAFTAL_NATIVE_ONLY_SOURCES
+  src/lang/preprocessor.cpp
+  src/music/lilypond_writer.cpp src/music/midi_writer.cpp src/music/music_file.cpp
+  src/music/wav_writer.cpp
+  src/output/animation_file.cpp src/output/cairo_writer.cpp
+  src/output/derivation_diagram_writer.cpp src/output/gif_encoder.cpp src/output/mp4_encoder.cpp
+  src/output/png_frames_encoder.cpp src/output/raytrace_camera.cpp
+  src/output/raytrace_renderer.cpp src/output/raytrace_scene.cpp src/output/raytrace_shading.cpp
+  src/output/streamed_picture.cpp src/output/streamed_png.cpp src/output/webp_encoder.cpp
+  src/pipeline/animation.cpp)
+
 set(GRAFTAL_WEB_FLAGS -fexceptions -Oz)
 add_executable(graftal_engine ${GRAFTAL_WEB_SOURCES})
 target_include_directories(graftal_engine PRIVATE include src)
