@@ -74,6 +74,7 @@ if(TARGET graftal_studio_page)
             ${CMAKE_CURRENT_SOURCE_DIR}/studio/src/api.js ${GRAFTAL_STUDIO_NODE}/npm-ci.stamp
     COMMENT "Bundling graftal.show()'s 3D viewer with esbuild")
   add_custom_target(graftal_python_viewer ALL DEPENDS ${viewer_js})
+  add_dependencies(graftal_python_viewer graftal_studio_npm)
   add_dependencies(graftal_python graftal_python_viewer)
   install(FILES ${viewer_js} DESTINATION ${GRAFTAL_PYTHON_INSTALL_DIR}/graftal)
 endif()

@@ -45,6 +45,9 @@ add_custom_command(
   WORKING_DIRECTORY ${GRAFTAL_STUDIO_NODE}
   DEPENDS ${studio_src}/package.json ${studio_src}/package-lock.json
   COMMENT "Installing the studio's npm packages (package-lock.json)")
+# One target owns the install: the page and graftal.show()'s viewer both bundle from these
+# packages, and two targets running one rule in parallel would race in the same folder.
+add_custom_target(graftal_studio_npm DEPENDS ${GRAFTAL_STUDIO_NODE}/npm-ci.stamp)
 
 file(GLOB GRAFTAL_STUDIO_SOURCES CONFIGURE_DEPENDS ${studio_src}/src/*.js)
 add_custom_command(
@@ -63,6 +66,7 @@ add_custom_command(
 add_custom_target(graftal_studio_page ALL
   DEPENDS ${GRAFTAL_STUDIO_PAGE}/studio.js ${GRAFTAL_STUDIO_PAGE}/index.html
           ${GRAFTAL_STUDIO_PAGE}/studio.css)
+add_dependencies(graftal_studio_page graftal_studio_npm)
 add_dependencies(graftal graftal_studio_page)
 install(DIRECTORY ${GRAFTAL_STUDIO_PAGE}/ DESTINATION ${CMAKE_INSTALL_DATADIR}/graftal/studio)
 
