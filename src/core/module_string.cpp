@@ -189,26 +189,27 @@ char* copyText(char* out, const char* text) {
     return out;
 }
 
-}  // namespace
-
-char* formatNumberTo(char* out, double v) {
+// The shortest text that reads back as v, whole numbers without a point: one rule for the
+// double and the float printer.
+template <typename Real>
+char* formatRealTo(char* out, Real v) {
     if (v == 0) return copyText(out, "0");  // also folds -0
     if (std::isnan(v)) return copyText(out, "nan");
     if (std::isinf(v)) return copyText(out, v > 0 ? "inf" : "-inf");
     char* end = out + kNumberTextCapacity;
-    if (std::fabs(v) < 1e15 && v == std::trunc(v))
+    if (std::fabs(v) < Real(1e15) && v == std::trunc(v))
         return std::to_chars(out, end, static_cast<long long>(v)).ptr;
     return numberToChars(out, end, v).ptr;
 }
 
+}  // namespace
+
+char* formatNumberTo(char* out, double v) {
+    return formatRealTo(out, v);
+}
+
 char* formatSingleTo(char* out, float v) {
-    if (v == 0) return copyText(out, "0");
-    if (std::isnan(v)) return copyText(out, "nan");
-    if (std::isinf(v)) return copyText(out, v > 0 ? "inf" : "-inf");
-    char* end = out + kNumberTextCapacity;
-    if (std::fabs(v) < 1e15f && v == std::trunc(v))
-        return std::to_chars(out, end, static_cast<long long>(v)).ptr;
-    return numberToChars(out, end, v).ptr;
+    return formatRealTo(out, v);
 }
 
 std::string formatNumber(double v) {
