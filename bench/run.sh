@@ -17,6 +17,11 @@
 #   BENCH_STREAM_TIMEOUT=150  seconds the streamed Koch n=11 render gets
 #   BENCH_PEER=1              0: skip lindenmayer (and its npm install)
 #   BENCH_DOC=docs/performance.md   where the table goes ("" for nowhere)
+#   CPFG=DEST/bin/cpfg        also run cpfg 6.6 side by side (bench/versus_cpfg.py): the
+#                             models of bench/cpfg/ in three modes, runs alternating;
+#                             ../shared/cpfg-anchor/ says how to build cpfg from vlab's
+#                             sources outside the repository
+#   BENCH_CPFG_RUNS=3         runs per program and mode in the cpfg comparison
 #   BENCH_ROWS="honda23 pcond22"    run only these rows (keys as in bench/report.py, and
 #                             mesh3d: the 3D turtle and mesher, python: the Python module,
 #                             printed, not in the table);
@@ -255,6 +260,22 @@ if wanted render3d; then
     echo "not written for the peer" >"$results/render3d.peer.unavailable"
 fi
 
+# ---- cpfg side by side -------------------------------------------------------------------
+# The same files (bench/cpfg/) read by both programs, string to a file, derivation, and
+# derivation + turtle; its own table, between the cpfg:begin/cpfg:end markers of the doc.
+if [ -n "${CPFG:-}" ]; then
+    say "bench: cpfg side by side ($CPFG)"
+    cpfg_rows=()
+    for key in koch8 abop16 hogeweg70 honda23; do wanted "$key" && cpfg_rows+=("$key"); done
+    if [ ${#cpfg_rows[@]} -gt 0 ]; then
+        partial=()
+        [ -n "$ONLY" ] && partial=(--rows "${cpfg_rows[*]}")
+        python3 "$here/versus_cpfg.py" --graftal "$graftal" --cpfg "$CPFG" \
+            --results "$results" --runs "${BENCH_CPFG_RUNS:-3}" "${partial[@]}" \
+            ${DOC:+--doc "$DOC"} >/dev/null || say "bench: the cpfg comparison failed"
+    fi
+fi
+
 # ---- the table ---------------------------------------------------------------------------
 load_after=$(cut -d' ' -f1-3 /proc/loadavg)
 python3 - "$results/env.json" "$load_after" "$(( $(date +%s) - start ))" <<'EOF'
@@ -270,3 +291,8 @@ say "bench: done in $(( $(date +%s) - start )) s; results in $results"
 echo
 python3 "$here/report.py" report --results "$results" --json "$results/summary.json" \
     ${ONLY:+--only "$ONLY"} ${DOC:+--doc "$DOC"}
+if [ -f "$results/versus-cpfg.md" ]; then
+    echo
+    echo "graftal and cpfg 6.6 side by side (bench/versus_cpfg.py):"
+    cat "$results/versus-cpfg.md"
+fi
