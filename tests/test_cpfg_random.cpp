@@ -185,3 +185,25 @@ TEST(CpfgRandom, ACutHappensWhereTheStepReachesIt) {
     EXPECT_EQ(derivedWith(text, 1, RandomStreams::Cpfg), "B[X]D");
     EXPECT_EQ(derivedWith(text, 1, RandomStreams::Graftal), "B[A]D");
 }
+
+// A model read with a view file asks for cpfg's streams, but one that never draws keeps the
+// parallel rewriting and the counted last step: what it draws decides, not the setting.
+TEST(CpfgRandom, OnlyAModelThatDrawsIsHeldToCpfgsOrder) {
+    const std::string honda =
+        "Lsystem: 1\nderivation length: 6\naxiom: A(1,10)\n"
+        "A(l,w) : * --> !(w)F(l)[&(45)B(l*0.6,w*0.707)]/(137.5)A(l*0.9,w*0.707)\n"
+        "B(l,w) : * --> !(w)F(l)[-(45)@vB(l*0.6,w*0.707)]B(l*0.9,w*0.707)\nendlsystem\n";
+    EXPECT_FALSE(parse(honda).drawsRandomNumbers());
+    EXPECT_TRUE(parse("Lsystem: 1\naxiom: A\nA --> B : 0.3\nA --> C : 0.7\nendlsystem\n")
+                    .drawsRandomNumbers());
+    EXPECT_TRUE(parse("Lsystem: 1\naxiom: A(1)\nA(x) --> A(x+ran(1))\nendlsystem\n")
+                    .drawsRandomNumbers());
+    EXPECT_TRUE(parse("Lsystem: 1\naxiom: A(1)\nA(x) : ran(1) < 0.5 --> B\nendlsystem\n")
+                    .drawsRandomNumbers());
+    EXPECT_TRUE(parse("Lsystem: 1\naxiom: A(1)\nA(x) : { y = nran(0, 1); } * --> A(y)\n"
+                      "endlsystem\n")
+                    .drawsRandomNumbers());
+    // The string is the same with either generator, and for any thread count.
+    EXPECT_EQ(derivedWith(honda, 6, RandomStreams::Cpfg),
+              derivedWith(honda, 6, RandomStreams::Graftal));
+}

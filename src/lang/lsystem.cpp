@@ -116,6 +116,37 @@ bool LSystem::hasSideEffects() const {
     return false;
 }
 
+namespace {
+
+bool blockDrawsRandomNumbers(const Block& block) {
+    for (const auto& st : block)
+        if (st.value.usesRandom() || st.address.usesRandom() ||
+            blockDrawsRandomNumbers(st.body) || blockDrawsRandomNumbers(st.elseBody))
+            return true;
+    return false;
+}
+
+}  // namespace
+
+bool LSystem::drawsRandomNumbers() const {
+    for (const auto* list : {&productions, &decomposition}) {
+        for (const auto& p : *list) {
+            if (p.probability) return true;
+            if (p.condition && p.condition->usesRandom()) return true;
+            for (const auto& m : p.successor)
+                for (const auto& a : m.args)
+                    if (a.usesRandom()) return true;
+            if (blockDrawsRandomNumbers(p.preBlock) || blockDrawsRandomNumbers(p.postBlock))
+                return true;
+        }
+    }
+    for (const auto* b : {&startBlock, &startEachBlock, &endEachBlock, &endBlock})
+        if (blockDrawsRandomNumbers(*b)) return true;
+    for (const auto& a : axiomArguments)
+        if (a.value.usesRandom()) return true;
+    return false;
+}
+
 void LSystem::print(std::ostream& os, const ViewSettings* view) const {
     if (legacyPfg) os << "/* read as a pfg data file */\n";
     for (std::size_t s = kFirstDeclaredSymbol; s < symbols.size(); ++s)

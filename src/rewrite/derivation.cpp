@@ -69,7 +69,11 @@ Derivation::Derivation(LSystem lsystem, DerivationOptions options)
     files_ = std::make_unique<ModelOutputFiles>(std::filesystem::path(lsystem_.file).parent_path());
     rules_->setState(state_.data(), &options_.print, files_.get());
     if (decomposition_) decomposition_->setState(state_.data(), &options_.print, files_.get());
-    if (options_.random.value_or(lsystem_.random) == RandomStreams::Cpfg) {
+    const bool cpfgStreams = options_.random.value_or(lsystem_.random) == RandomStreams::Cpfg;
+    if (cpfgStreams) deferQueries_ = lsystem_.cpfgViewBox;
+    // A model that never draws gives the same string with either generator: it keeps the
+    // parallel rewriting and the counted last step, which cpfg's order would rule out.
+    if (cpfgStreams && lsystem_.drawsRandomNumbers()) {
         // cpfg's generators, drawn in cpfg's order: every step in string order. Only the
         // productions draw to choose (decomposition takes the first applicable one).
         // cpfg's batch run (`cpfg -g -str`, the string it saves) leaves the productions'
@@ -79,7 +83,6 @@ Derivation::Derivation(LSystem lsystem, DerivationOptions options)
             options_.seed ? static_cast<long>(*options_.seed & 0xFFFFFFFF) : 0);
         rules_->useCpfgRandom(cpfgRandom_.get(), lsystem_.hasSeedLine || options_.seed, true);
         if (decomposition_) decomposition_->useCpfgRandom(cpfgRandom_.get(), false);
-        deferQueries_ = lsystem_.cpfgViewBox;
     }
     if (!lsystem_.startBlock.empty()) rules_->runBlock(lsystem_.startBlock, nullptr, 0, 0);
     if (!lsystem_.axiomArguments.empty()) {

@@ -25,15 +25,8 @@ std::string streamingObstacle(const LSystem& ls) {
             for (const auto& a : m.args) state |= a.usesState();
         if (state) return "it reads Q, Z or variables";
     }
-    if (ls.random == RandomStreams::Cpfg) {
-        bool random = ls.hasSeedLine;
-        for (const auto& p : ls.productions) {
-            random |= p.condition && p.condition->usesRandom();
-            for (const auto& m : p.successor)
-                for (const auto& a : m.args) random |= a.usesRandom();
-        }
-        if (random) return "it draws cpfg's random numbers, which come in string order";
-    }
+    if (ls.random == RandomStreams::Cpfg && ls.drawsRandomNumbers())
+        return "it draws cpfg's random numbers, which come in string order";
     if (!ls.environment.empty()) return "it talks to an environment";
     for (Symbol s : ls.axiom.symbols())
         if (s >= kQueryE && s <= kQueryU) return "it has query modules";

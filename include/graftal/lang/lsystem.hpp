@@ -171,6 +171,10 @@ class LSystem {
     // Whether a derivation step has effects beyond its string: a production block, or an
     // expression that writes (printf). Such steps rewrite the modules in string order.
     bool hasSideEffects() const;
+    // Whether a derivation ever draws a random number: a stochastic production, or ran(),
+    // nran(), bran(), biran() or srand() in a condition, a successor's parameters, a block
+    // or the axiom (decomposition included; the homomorphism is not part of a derivation).
+    bool drawsRandomNumbers() const;
     bool hasGlobalBlocks() const {
         return !startBlock.empty() || !startEachBlock.empty() || !endEachBlock.empty() ||
                !endBlock.empty();
