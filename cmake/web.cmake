@@ -157,8 +157,10 @@ add_custom_command(
          ${GRAFTAL_WEB_OUTPUT}/worker.js ${GRAFTAL_WEB_OUTPUT}/package/index.js
   COMMAND ${GRAFTAL_NODE} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/web_page.mjs
           ${CMAKE_CURRENT_SOURCE_DIR} $<TARGET_FILE_DIR:graftal_engine> ${GRAFTAL_WEB_OUTPUT}
-  COMMAND ${esbuild} ${studio_src}/src/main.js --target=es2020
-          --outfile=${GRAFTAL_WEB_OUTPUT}/studio.js
+  # The 3D view (three.js) in a chunk of its own, loaded when it is first shown.
+  COMMAND ${CMAKE_COMMAND} -E rm -rf ${GRAFTAL_WEB_OUTPUT}/chunks
+  COMMAND ${esbuild} studio=${studio_src}/src/main.js --target=es2020 --splitting
+          --chunk-names=chunks/[name]-[hash] --outdir=${GRAFTAL_WEB_OUTPUT}
   # The worker awaits the engine at its top level (ES2022).
   # (its Node.js branch, which reads the .wasm from disk, is left to Node.js)
   COMMAND ${esbuild} ${studio_src}/src/worker.js --target=es2022 --external:node:*

@@ -98,7 +98,7 @@ test('a derivation stays in the engine: its string is made when read, release() 
   assert.throws(() => d.parameters, graftal.GraftalError);
   const head = graftal.derive(koch, { steps: 1, maxTextModules: 5 });
   assert.equal(head.string, graftal.derive(koch, { steps: 1 }).string.slice(0, 5));
-  assert.equal(head.moduleCount, 4 * 15 + 3);
+  assert.equal(head.moduleCount, 4 * 14 + 3);
 });
 
 test('interpret draws segments and triangles as typed arrays', () => {
