@@ -94,7 +94,7 @@ set(GRAFTAL_NATIVE_ONLY_SOURCES
 # Speed first (-O2: the rewriting loops are 5-20 times faster than with -Oz, and the .wasm
 # stays under 600 KB gzip-compressed), WebAssembly's own exceptions (emscripten's JavaScript
 # ones route every call that may throw through JavaScript), SIMD and bulk memory (memcpy
-# and memset as single instructions). Node.js 16+ and every current browser run them.
+# and memset as single instructions). Node.js 18+ and browsers since 2021-22 run them.
 set(GRAFTAL_WEB_FLAGS -fwasm-exceptions -O2 -msimd128 -mbulk-memory)
 add_executable(graftal_engine ${GRAFTAL_WEB_SOURCES})
 target_include_directories(graftal_engine PRIVATE include src)
