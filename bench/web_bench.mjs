@@ -165,6 +165,16 @@ async function firstPicture() {
     for (let i = 0; i < 5; ++i) {
       const context = await browser.newContext({ viewport: { width: 1400, height: 860 } });
       const page = await context.newPage();
+      // The page's own clock: the moment the first picture is counted, from the start of
+      // the navigation (what the harness's clock adds is its round trips to the browser).
+      await page.addInitScript(() => {
+        const poll = setInterval(() => {
+          if (window.studio && window.studio.pictures > 0) {
+            window.firstPictureMs = performance.now();
+            clearInterval(poll);
+          }
+        }, 5);
+      });
       const loadBefore = load();
       const cpuBefore = childrenCpu();
       const opened = performance.now();
@@ -176,7 +186,8 @@ async function firstPicture() {
       const marks = await page.evaluate(() => {
         const at = (name) => Math.round(performance.getEntriesByType('resource')
           .find((r) => r.name.endsWith(name))?.responseEnd ?? -1);
-        return { html: Math.round(performance.getEntriesByType('navigation')[0].responseEnd),
+        return { inPage: window.firstPictureMs,
+          html: Math.round(performance.getEntriesByType('navigation')[0].responseEnd),
           script: at('studio.js'), examples: at('examples.json'),
           step: document.getElementById('step-value').textContent };
       });
@@ -187,16 +198,18 @@ async function firstPicture() {
     await browser.close();
     server.close();
   }
-  const sorted = runs.map((r) => r.ms).sort((a, b) => a - b);
-  const median = sorted[Math.floor(sorted.length / 2)];
-  const cpu = runs.map((r) => r.cpuMs).sort((a, b) => a - b)[Math.floor(runs.length / 2)];
+  const middle = (values) => values.slice().sort((a, b) => a - b)[Math.floor(values.length / 2)];
+  const median = middle(runs.map((r) => r.inPage));
+  const fastest = Math.min(...runs.map((r) => r.inPage));
   console.log(`\nfirst picture of the static page (Koch island n=4, headless chromium): median ` +
-    `${median.toFixed(0)} ms of ${runs.length} (fastest ${sorted[0].toFixed(0)} ms); the browser's ` +
-    `processes used ${cpu.toFixed(0)} ms of CPU (median) in that time`);
+    `${median.toFixed(0)} ms of ${runs.length} (fastest ${fastest.toFixed(0)} ms) from the ` +
+    `navigation's start, by the page's clock; ${middle(runs.map((r) => r.ms)).toFixed(0)} ms by ` +
+    `the harness's; the browser's processes used ${middle(runs.map((r) => r.cpuMs)).toFixed(0)} ms ` +
+    `of CPU (median) in that time`);
   for (const r of runs)
-    console.log(`    ${r.ms.toFixed(0)} ms (CPU ${r.cpuMs.toFixed(0)} ms) at load ${r.load}: page ${r.html} ms, studio.js ${r.script} ms, ` +
+    console.log(`    ${r.inPage.toFixed(0)} ms (harness ${r.ms.toFixed(0)} ms, CPU ${r.cpuMs.toFixed(0)} ms) at load ${r.load}: page ${r.html} ms, studio.js ${r.script} ms, ` +
       `examples ${r.examples} ms (loaded, from navigation), step ${r.step}`);
-  return { median, cpu, runs };
+  return { median, fastest, runs };
 }
 
 const out = {};
