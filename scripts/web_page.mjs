@@ -21,8 +21,41 @@ fs.copyFileSync(path.join(engineDir, 'graftal-engine.wasm'), path.join(outDir, '
 const html = fs.readFileSync(path.join(sourceDir, 'studio', 'index.html'), 'utf8')
   .replace('<html lang="en">', '<html lang="en" data-engine="wasm">')
   .replace('href="/studio.css"', 'href="studio.css"')
-  .replace('src="/studio.js"', 'src="studio.js"');
-if (!html.includes('data-engine="wasm"') || html.includes('"/studio.js"'))
+  .replace('src="/studio.js"', 'src="studio.js"')
+  // The engine starts before the page's own script (1 MB with the editor and three.js)
+  // has loaded: its worker fetches and compiles the .wasm meanwhile, and the examples come
+  // in the same time (engine_worker.js takes both over).
+  .replace('</title>', `</title>
+<script>
+window.graftalBoot = { worker: new Worker('worker.js', { type: 'module' }),
+  examples: fetch('examples.json').then((r) => (r.ok ? r.json() : {})).catch(() => ({})) };
+// A worker that failed before the page took it over is not taken (the page starts another
+// and hears its error).
+window.graftalBoot.worker.onerror = () => { window.graftalBoot.worker = null; };
+// The model the address opens (a shared link, or a built-in example by name) is derived
+// at once: the engine keeps the last picture, and the page's own request for it, once the
+// editor is up, is answered from it. The answer to this one is not listened to.
+(async () => {
+  const hash = location.hash.slice(1);
+  let text, path;
+  if (hash.startsWith('model=')) {
+    const [data, ...rest] = hash.slice(6).split('&');
+    const bytes = Uint8Array.from(atob(data.replace(/-/g, '+').replace(/_/g, '/')), (c) => c.charCodeAt(0));
+    const out = new Blob([bytes]).stream().pipeThrough(new DecompressionStream('deflate-raw'));
+    text = await new Response(out).text();
+    path = new URLSearchParams(rest.join('&')).get('name') || 'shared.l';
+  } else if (hash) {
+    path = decodeURIComponent(hash);
+    if (localStorage.getItem('graftal-file:' + path) === null) text = (await window.graftalBoot.examples)[path];
+  }
+  const worker = window.graftalBoot.worker;
+  if (typeof text === 'string' && worker)
+    worker.postMessage({ id: 0, op: 'derive', body: { text, path, steps: null, defines: {}, have: '' } });
+})().catch(() => {});
+</script>
+<link rel="modulepreload" href="studio.js">`);
+if (!html.includes('data-engine="wasm"') || html.includes('"/studio.js"') ||
+    !html.includes('window.graftalBoot'))
   throw new Error('studio/index.html changed: the static page cannot be made from it');
 fs.writeFileSync(path.join(outDir, 'index.html'), html);
 fs.copyFileSync(path.join(sourceDir, 'studio', 'studio.css'), path.join(outDir, 'studio.css'));

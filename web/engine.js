@@ -4,23 +4,39 @@
 // ready to call once `ready` has resolved (index.js awaits it for its importers).
 import createGraftalEngine from './graftal-engine.js';
 
-// The .wasm beside this file, read by Node.js from disk and fetched by a browser (the
-// emscripten loader's own fetch of a file path fails under Node.js 18+).
-async function wasmBytes() {
-  const url = new URL('./graftal-engine.wasm', import.meta.url);
-  if (url.protocol === 'file:' && typeof process === 'object' && process.versions?.node) {
+// The .wasm beside this file: read by Node.js from disk (the emscripten loader's own fetch
+// of a file path fails under Node.js 18+), compiled by a browser while it downloads.
+const wasmUrl = new URL('./graftal-engine.wasm', import.meta.url);
+const inNode = wasmUrl.protocol === 'file:' && typeof process === 'object' && process.versions?.node;
+
+async function instantiate(imports) {
+  if (inNode) {
     const { readFile } = await import('node:fs/promises');
-    return readFile(url);
+    return WebAssembly.instantiate(await readFile(wasmUrl), imports);
   }
-  const response = await fetch(url);
-  if (!response.ok) throw new Error(`graftal: cannot load ${url}: ${response.status}`);
-  return new Uint8Array(await response.arrayBuffer());
+  const response = fetch(wasmUrl);
+  if (WebAssembly.instantiateStreaming) {
+    try {
+      return await WebAssembly.instantiateStreaming(response, imports);
+    } catch (e) {
+      // A server that sends the .wasm with another type than application/wasm.
+      if (!(e instanceof TypeError)) throw e;
+    }
+  }
+  const r = await fetch(wasmUrl);
+  if (!r.ok) throw new Error(`graftal: cannot load ${wasmUrl}: ${r.status}`);
+  return WebAssembly.instantiate(await r.arrayBuffer(), imports);
 }
 
 let engine = null;
-export const ready = wasmBytes()
-  .then((bytes) => createGraftalEngine({ wasmBinary: bytes }))
-  .then((module) => { engine = module; });
+let loadFailed;
+const failure = new Promise((resolve, reject) => { loadFailed = reject; });
+export const ready = Promise.race([failure, createGraftalEngine({
+  instantiateWasm(imports, done) {
+    instantiate(imports).then((r) => done(r.instance, r.module), loadFailed);
+    return {};
+  },
+})]).then((module) => { engine = module; });
 
 // An error of the model (or of a limit): `diagnostics` holds every problem, each with its
 // severity, line, column (1-based) and message; `line` and `column` are the first's.
@@ -56,7 +72,6 @@ const optionsText = (options = {}) => JSON.stringify({
   ...(options.maxSteps !== undefined ? { maxSteps: options.maxSteps } : {}),
   ...(options.memoryLimit !== undefined ? { memoryLimit: options.memoryLimit } : {}),
   ...(options.maxTextModules !== undefined ? { maxTextModules: options.maxTextModules } : {}),
-  ...(options.arrays === false ? { arrays: false } : {}),
   ...(options.width !== undefined ? { width: options.width } : {}),
   ...(options.height !== undefined ? { height: options.height } : {}),
 });
@@ -72,23 +87,79 @@ export function parse(text, options) {
   return report;
 }
 
-// Derives the model: {steps, string, moduleCount, counts, symbols, offsets, parameters,
-// symbolNames, notes}. `symbols` holds one symbol id a module (Uint8Array; symbolNames[id]
-// is its name); module i's parameters are parameters[offsets[i] .. offsets[i+1]]
-// (Uint32Array, Float64Array; both null when no module has parameters).
+// The derivations JavaScript no longer holds are released in the engine's memory.
+const kept = new FinalizationRegistry((handle) => engine.release(handle));
+const decoder = new TextDecoder();
+
+// A derived string. It stays in the engine's memory: `string`, `counts`, `symbols`,
+// `offsets` and `parameters` are made when first read, so that a caller who wants the
+// module count (or only the counts) does not pay for a JavaScript string of 10^8
+// characters. `release()` frees the engine's copy at once (the values already read stay).
+export class Derivation {
+  #handle;
+  #options;
+  #cache = {};
+
+  constructor(r, options) {
+    this.#handle = r.handle;
+    this.#options = options;
+    this.steps = r.steps;
+    this.moduleCount = r.moduleCount;
+    this.symbolNames = JSON.parse(r.symbolNames);
+    this.notes = JSON.parse(r.notes);
+    kept.register(this, r.handle, this);
+  }
+
+  #get(key, make) {
+    if (!(key in this.#cache)) {
+      if (this.#handle === null) throw new GraftalError('the derivation was released');
+      this.#cache[key] = make(this.#handle);
+    }
+    return this.#cache[key];
+  }
+
+  // The modules as text, as `graftal derive` prints them (up to options.maxTextModules).
+  get string() {
+    return this.#get('string', (h) => {
+      const limit = this.#options?.maxTextModules ?? this.moduleCount;
+      // A view of the engine's memory, decoded before anything else runs in the engine.
+      const text = decoder.decode(engine.derivationText(h, limit));
+      engine.releaseText(h);
+      return text;
+    });
+  }
+
+  // {name: count} of the symbols in the string.
+  get counts() { return this.#get('counts', (h) => JSON.parse(engine.derivationCounts(h))); }
+
+  // One symbol id a module (Uint8Array); symbolNames[id] is its name.
+  get symbols() { return this.#get('symbols', (h) => engine.derivationSymbols(h)); }
+
+  #parameters() { return this.#get('parameters', (h) => engine.derivationParameters(h)); }
+  // Module i's parameters are parameters[offsets[i] .. offsets[i+1]] (Uint32Array,
+  // Float64Array; both null when no module has parameters).
+  get offsets() { return this.#parameters().offsets ?? null; }
+  get parameters() { return this.#parameters().parameters ?? null; }
+
+  // Frees the string in the engine's memory; the values already read stay readable.
+  release() {
+    if (this.#handle === null) return;
+    kept.unregister(this);
+    engine.release(this.#handle);
+    this.#handle = null;
+  }
+
+  // What JSON.stringify and console.log show: the values, made now.
+  toJSON() {
+    const { steps, moduleCount, counts, symbolNames, notes } = this;
+    return { steps, string: this.string, moduleCount, counts, symbolNames, notes };
+  }
+}
+
+// Derives the model: a Derivation {steps, moduleCount, symbolNames, notes, and, made when
+// read, string, counts, symbols, offsets, parameters}.
 export function derive(text, options) {
-  const r = check(engine.derive(text, optionsText(options)));
-  return {
-    steps: r.steps,
-    string: r.text,
-    moduleCount: r.moduleCount,
-    counts: JSON.parse(r.counts),
-    symbolNames: JSON.parse(r.symbolNames),
-    symbols: r.symbols ?? null,
-    offsets: r.offsets ?? null,
-    parameters: r.parameters ?? null,
-    notes: JSON.parse(r.notes),
-  };
+  return new Derivation(check(engine.derive(text, optionsText(options))), options);
 }
 
 // The turtle's drawing: {steps, is3D, segments (Float32Array, x0 y0 z0 x1 y1 z1 a segment),

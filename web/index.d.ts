@@ -13,8 +13,6 @@ export interface Options {
   memoryLimit?: number;
   /** derive(): the most modules written into `string`. */
   maxTextModules?: number;
-  /** derive(): false leaves out symbols, offsets and parameters (counts only). */
-  arrays?: boolean;
   /** toSVG(): the picture's size in pixels. */
   width?: number;
   height?: number;
@@ -54,16 +52,25 @@ export interface ParseReport {
   name: string;
 }
 
-export interface Derivation {
-  steps: number;
-  string: string;
-  moduleCount: number;
-  counts: Record<string, number>;
-  symbolNames: string[];
-  symbols: Uint8Array | null;
-  offsets: Uint32Array | null;
-  parameters: Float64Array | null;
-  notes: string[];
+/**
+ * A derived string, kept in the engine's memory: `string`, `counts`, `symbols`, `offsets`
+ * and `parameters` are made when first read (then kept). `release()` frees the engine's
+ * copy at once; otherwise it is freed when the object is garbage-collected.
+ */
+export class Derivation {
+  readonly steps: number;
+  readonly moduleCount: number;
+  readonly symbolNames: string[];
+  readonly notes: string[];
+  /** The modules as `graftal derive` prints them (up to `maxTextModules`). */
+  readonly string: string;
+  readonly counts: Record<string, number>;
+  /** One symbol id a module: module i is symbolNames[symbols[i]]. */
+  readonly symbols: Uint8Array;
+  /** Module i's parameters are parameters[offsets[i] .. offsets[i+1]]; null without any. */
+  readonly offsets: Uint32Array | null;
+  readonly parameters: Float64Array | null;
+  release(): void;
 }
 
 export interface Bounds {

@@ -6,10 +6,13 @@
 #include <emscripten/bind.h>
 #include <emscripten/val.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <memory>
 #include <new>
 #include <string>
+#include <unordered_map>
 
 #include <nlohmann/json.hpp>
 
@@ -119,51 +122,110 @@ std::string parse(const std::string& text, const std::string& optionsText) {
     return studio::parseReport(modelInput(text, parseOptions(optionsText))).dump();
 }
 
-// The derived string: its text (up to options.maxTextModules), its counts, and its modules
-// as typed arrays (symbol ids, parameter offsets, parameters).
+// A derivation the package's JavaScript holds (its Derivation object): the string stays in
+// the module's memory, and its text, symbols and parameters are handed over only when asked
+// for, since turning 10^8 modules into a JavaScript string or a copy costs more than the
+// derivation itself. Released by the object's release() or when JavaScript collects it.
+struct KeptDerivation {
+    std::shared_ptr<const Model> model;
+    ModuleString modules;
+    std::string text;  // the text while JavaScript decodes it
+};
+std::unordered_map<int, KeptDerivation> gDerivations;
+int gNextDerivation = 0;
+
+KeptDerivation& kept(int handle) {
+    auto it = gDerivations.find(handle);
+    if (it == gDerivations.end())
+        throw Error(SourceLocation{"derive", 0, 0}, "the derivation was released");
+    return it->second;
+}
+
+// {handle, steps, moduleCount, symbolNames, notes}: the derivation stays in the module.
 val derive(const std::string& text, const std::string& optionsText) {
     return guarded([&] {
         const json options = parseOptions(optionsText);
         const studio::ModelInput input = modelInput(text, options);
-        const Model model = parsedModel(input);
+        auto model = std::make_shared<const Model>(parsedModel(input));
         const ExportRequest request = pipelineRequest(input, options);
-        Derived d = derived(model, request);
-        const ModuleString& m = d.modules;
-        const SymbolTable& symbols = model.lsystem.symbols;
+        Derived d = derived(*model, request);
+        const SymbolTable& symbols = model->lsystem.symbols;
         val out = val::object();
         out.set("steps", d.steps);
-        out.set("moduleCount", static_cast<double>(m.size()));
+        out.set("moduleCount", static_cast<double>(d.modules.size()));
         json notes = json::array();
         for (const Diagnostic& n : d.notes) notes.push_back(n.message);
         out.set("notes", notes.dump());
         json names = json::array();
         for (std::size_t s = 0; s < symbols.size(); ++s) names.push_back(symbols.name(Symbol(s)));
         out.set("symbolNames", names.dump());
-        const std::vector<std::uint64_t> counts = countSymbols(m, symbols.size());
-        json countsJson = json::object();
-        for (std::size_t s = 0; s < counts.size(); ++s)
-            if (counts[s] > 0) countsJson[symbols.name(Symbol(s))] = counts[s];
-        out.set("counts", countsJson.dump());
-        const std::size_t limit = options.value("maxTextModules", m.size());
-        std::string textOut;
-        for (std::size_t i = 0; i < m.size() && i < limit; ++i)
-            appendModuleText(textOut, symbols, m.symbol(i), m.params(i));
-        out.set("text", textOut);
-        // A benchmark or a caller that wants the counts only leaves the arrays out.
-        if (!options.value("arrays", true)) return out;
-        out.set("symbols", typedArray(m.symbols().data(), m.size()));
-        if (m.hasParameters()) {
-            const auto& starts = m.paramStarts();
-            out.set("offsets", typedArray(starts.data(), m.size() + 1));
-            std::vector<double> params(m.paramCount());
-            for (std::size_t i = 0; i < m.size(); ++i) {
-                const ParamView p = m.params(i);
-                for (std::size_t k = 0; k < p.size(); ++k) params[starts[i] + k] = p[k];
-            }
-            out.set("parameters", typedArray(params.data(), params.size()));
-        }
+        const int handle = ++gNextDerivation;
+        gDerivations.emplace(handle, KeptDerivation{std::move(model), std::move(d.modules), {}});
+        out.set("handle", handle);
         return out;
     });
+}
+
+void release(int handle) { gDerivations.erase(handle); }
+
+// {name: count} of the symbols the string holds.
+std::string derivationCounts(int handle) {
+    const KeptDerivation& k = kept(handle);
+    const SymbolTable& symbols = k.model->lsystem.symbols;
+    const std::vector<std::uint64_t> counts = countSymbols(k.modules, symbols.size(), 1);
+    json countsJson = json::object();
+    for (std::size_t s = 0; s < counts.size(); ++s)
+        if (counts[s] > 0) countsJson[symbols.name(Symbol(s))] = counts[s];
+    return countsJson.dump();
+}
+
+// The text of the first `limit` modules as bytes in the module's memory, for JavaScript to
+// decode at once (the view is valid until the module's memory grows). A string without
+// parameters whose symbols all print as their own one character is its text already.
+val derivationText(int handle, double limit) {
+    KeptDerivation& k = kept(handle);
+    const ModuleString& m = k.modules;
+    const SymbolTable& symbols = k.model->lsystem.symbols;
+    const std::size_t count = std::min(m.size(), static_cast<std::size_t>(std::max(0.0, limit)));
+    // Ids from 128 are multi-letter names; below, a name is its character.
+    Symbol highest = 0;
+    for (std::size_t i = 0; i < count; ++i) highest |= m.symbol(i);
+    bool plain = !m.hasParameters() && highest < kFirstNamedSymbol;
+    for (std::size_t s = 0; plain && s < kFirstNamedSymbol && s < symbols.size(); ++s) {
+        const std::string& name = symbols.name(Symbol(s));
+        plain = name.size() == 1 && name[0] == static_cast<char>(s);
+    }
+    if (plain) return val(emscripten::typed_memory_view(count, m.symbols().data()));
+    k.text.clear();
+    for (std::size_t i = 0; i < count; ++i)
+        appendModuleText(k.text, symbols, m.symbol(i), m.params(i));
+    return val(emscripten::typed_memory_view(k.text.size(),
+                                             reinterpret_cast<const unsigned char*>(k.text.data())));
+}
+
+// Frees the text derivationText() made, once JavaScript has decoded it.
+void releaseText(int handle) { std::string().swap(kept(handle).text); }
+
+// One symbol id a module (copied into a Uint8Array).
+val derivationSymbols(int handle) {
+    const ModuleString& m = kept(handle).modules;
+    return typedArray(m.symbols().data(), m.size());
+}
+
+// {offsets, parameters} (Uint32Array, Float64Array), or {} when no module has parameters.
+val derivationParameters(int handle) {
+    const ModuleString& m = kept(handle).modules;
+    val out = val::object();
+    if (!m.hasParameters()) return out;
+    const auto& starts = m.paramStarts();
+    out.set("offsets", typedArray(starts.data(), m.size() + 1));
+    std::vector<double> params(m.paramCount());
+    for (std::size_t i = 0; i < m.size(); ++i) {
+        const ParamView p = m.params(i);
+        for (std::size_t k = 0; k < p.size(); ++k) params[starts[i] + k] = p[k];
+    }
+    out.set("parameters", typedArray(params.data(), params.size()));
+    return out;
 }
 
 // The turtle's drawing: segments (x0 y0 z0 x1 y1 z1), their widths and colours, polygons
@@ -360,6 +422,12 @@ val studioExport(const std::string& bodyText) {
 EMSCRIPTEN_BINDINGS(graftal_engine) {
     emscripten::function("parse", &parse);
     emscripten::function("derive", &derive);
+    emscripten::function("release", &release);
+    emscripten::function("derivationCounts", &derivationCounts);
+    emscripten::function("derivationText", &derivationText);
+    emscripten::function("releaseText", &releaseText);
+    emscripten::function("derivationSymbols", &derivationSymbols);
+    emscripten::function("derivationParameters", &derivationParameters);
     emscripten::function("interpret", &interpret);
     emscripten::function("exportAs", &exportAs);
     emscripten::function("studioDerive", &studioDerive);

@@ -9,8 +9,13 @@ let busy = null;  // {reject} of the derivation under way
 let next = 0;
 const pending = new Map();
 
+// The static page's index.html started the first worker before this script loaded
+// (scripts/web_page.mjs): it is taken over, the engine compiled or on its way.
+const boot = typeof window === 'object' && window.graftalBoot ? window.graftalBoot : {};
+
 function start() {
-  worker = new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
+  worker = boot.worker || new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
+  boot.worker = null;
   worker.onmessage = (e) => {
     const { id, ok, result, error } = e.data;
     const call = pending.get(id);
@@ -71,6 +76,7 @@ function canvasPng() {
 const saved = 'graftal-file:';
 let examples = null;
 async function builtIn() {
+  if (!examples && boot.examples) examples = await boot.examples;
   if (!examples) {
     const res = await fetch(new URL('./examples.json', document.baseURI));
     examples = res.ok ? await res.json() : {};

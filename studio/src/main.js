@@ -6,7 +6,6 @@ import { setDiagnostics, lintGutter } from '@codemirror/lint';
 import * as api from './api.js';
 import { lsystemLanguage } from './lsystem_language.js';
 import { View2D } from './view2d.js';
-import { View3D } from './view3d.js';
 import { showFiles, markCurrent, refreshThumbnail, holdThumbnails } from './files_panel.js';
 import { showDefines, writeBackChanges } from './defines_panel.js';
 import { shareLink, sharedModel } from './share_link.js';
@@ -24,7 +23,16 @@ const studio = { state, pictures: 0, timings: [], errors: 0 };
 window.studio = studio;
 
 const view2d = new View2D($('view2d'));
-const view3d = new View3D($('view3d'));
+// The 3D view (three.js, most of the page's script) loads when it is first shown: the
+// first picture does not wait for it.
+let view3d = null;
+async function view3dLoaded() {
+  if (!view3d) {
+    const { View3D } = await import('./view3d.js');
+    view3d ??= new View3D($('view3d'));
+  }
+  return view3d;
+}
 
 const editor = new EditorView({
   doc: '',
@@ -160,13 +168,13 @@ async function show3D(fit) {
   if (!r || !r.lines) return;
   if (r.meta.meshAvailable) {
     try {
-      await view3d.showGlb(await api.mesh(modelBody()), fit);
+      await (await view3dLoaded()).showGlb(await api.mesh(modelBody()), fit);
       return;
     } catch (e) {
       if (e.cancelled) return;
     }
   }
-  view3d.showLines(r.lines, fit);
+  (await view3dLoaded()).showLines(r.lines, fit);
 }
 
 function showStats(meta) {
@@ -287,7 +295,7 @@ async function openFile(path, given = null) {
   await saveNow();
   const f = given || await api.readFile(path);
   Object.assign(state, { path, mtime: f.mtime, savedText: f.text, steps: null, overrides: {}, fitNext: true });
-  view3d.fitted = false;
+  if (view3d) view3d.fitted = false;
   $('file-name').textContent = path;
   $('save-state').textContent = 'saved';
   history.replaceState(null, '', '#' + encodeURIComponent(path));
@@ -335,7 +343,7 @@ for (const button of document.querySelectorAll('#view-tabs [data-view]')) {
     }
   });
 }
-$('fit').addEventListener('click', () => { view2d.resetView(); if (view3d.renderer) { view3d.fit(); view3d.render(); } });
+$('fit').addEventListener('click', () => { view2d.resetView(); if (view3d?.renderer) { view3d.fit(); view3d.render(); } });
 
 async function exportAs(format) {
   $('note').textContent = `exporting ${format}…`;

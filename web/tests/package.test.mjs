@@ -85,6 +85,22 @@ test('modules come as typed arrays with their parameters', () => {
   assert.deepEqual(graftal.parse(defined).defines.map((d) => [d.name, d.value]), [['N', 2], ['A', 90]]);
 });
 
+test('a derivation stays in the engine: its string is made when read, release() frees it', () => {
+  const d = graftal.derive(koch, { steps: 2 });
+  assert.equal(d.moduleCount, d.string.length);
+  const counts = d.counts;
+  const symbols = d.symbols;
+  d.release();
+  d.release();
+  assert.equal(counts.F, 256);
+  assert.equal(symbols.length, d.moduleCount);
+  assert.equal(d.string.length, d.moduleCount, 'what was read stays readable');
+  assert.throws(() => d.parameters, graftal.GraftalError);
+  const head = graftal.derive(koch, { steps: 1, maxTextModules: 5 });
+  assert.equal(head.string, graftal.derive(koch, { steps: 1 }).string.slice(0, 5));
+  assert.equal(head.moduleCount, 4 * 14 + 3);
+});
+
 test('interpret draws segments and triangles as typed arrays', () => {
   const drawing = graftal.interpret(koch, { steps: 1 });
   assert.ok(drawing.segments instanceof Float32Array);
