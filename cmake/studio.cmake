@@ -33,21 +33,11 @@ endif()
 
 # The packages of the lockfile, installed into the build folder (never the source tree).
 set(studio_src ${CMAKE_CURRENT_SOURCE_DIR}/studio)
-# The command below runs inside this folder, so it must exist before the first build.
-file(MAKE_DIRECTORY ${GRAFTAL_STUDIO_NODE})
-add_custom_command(
-  OUTPUT ${GRAFTAL_STUDIO_NODE}/npm-ci.stamp
-  COMMAND ${CMAKE_COMMAND} -E make_directory ${GRAFTAL_STUDIO_NODE}
-  COMMAND ${CMAKE_COMMAND} -E copy ${studio_src}/package.json ${studio_src}/package-lock.json
-          ${GRAFTAL_STUDIO_NODE}
-  COMMAND ${GRAFTAL_NPM} ci --no-audit --no-fund --loglevel=error
-  COMMAND ${CMAKE_COMMAND} -E touch ${GRAFTAL_STUDIO_NODE}/npm-ci.stamp
-  WORKING_DIRECTORY ${GRAFTAL_STUDIO_NODE}
-  DEPENDS ${studio_src}/package.json ${studio_src}/package-lock.json
-  COMMENT "Installing the studio's npm packages (package-lock.json)")
+include(${CMAKE_CURRENT_SOURCE_DIR}/cmake/npm_install.cmake)
+graftal_npm_ci(${studio_src} ${GRAFTAL_STUDIO_NODE} studio_npm_stamp)
 # One target owns the install: the page and graftal.show()'s viewer both bundle from these
 # packages, and two targets running one rule in parallel would race in the same folder.
-add_custom_target(graftal_studio_npm DEPENDS ${GRAFTAL_STUDIO_NODE}/npm-ci.stamp)
+add_custom_target(graftal_studio_npm DEPENDS ${studio_npm_stamp})
 
 file(GLOB GRAFTAL_STUDIO_SOURCES CONFIGURE_DEPENDS ${studio_src}/src/*.js)
 add_custom_command(
@@ -61,7 +51,7 @@ add_custom_command(
   COMMAND ${CMAKE_COMMAND} -E copy ${studio_src}/index.html ${studio_src}/studio.css
           ${GRAFTAL_STUDIO_PAGE}
   DEPENDS ${GRAFTAL_STUDIO_SOURCES} ${studio_src}/index.html ${studio_src}/studio.css
-          ${GRAFTAL_STUDIO_NODE}/npm-ci.stamp
+          ${studio_npm_stamp}
   COMMENT "Bundling the studio's page with esbuild")
 add_custom_target(graftal_studio_page ALL
   DEPENDS ${GRAFTAL_STUDIO_PAGE}/studio.js ${GRAFTAL_STUDIO_PAGE}/index.html

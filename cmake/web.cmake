@@ -129,16 +129,8 @@ endif()
 # The studio's npm packages (its lockfile), for esbuild and the page's libraries.
 set(GRAFTAL_WEB_NODE ${CMAKE_BINARY_DIR}/studio-node)
 set(studio_src ${CMAKE_CURRENT_SOURCE_DIR}/studio)
-file(MAKE_DIRECTORY ${GRAFTAL_WEB_NODE})
-add_custom_command(
-  OUTPUT ${GRAFTAL_WEB_NODE}/npm-ci.stamp
-  COMMAND ${CMAKE_COMMAND} -E copy ${studio_src}/package.json ${studio_src}/package-lock.json
-          ${GRAFTAL_WEB_NODE}
-  COMMAND ${GRAFTAL_NPM} ci --no-audit --no-fund --loglevel=error
-  COMMAND ${CMAKE_COMMAND} -E touch ${GRAFTAL_WEB_NODE}/npm-ci.stamp
-  WORKING_DIRECTORY ${GRAFTAL_WEB_NODE}
-  DEPENDS ${studio_src}/package.json ${studio_src}/package-lock.json
-  COMMENT "Installing the studio's npm packages (package-lock.json)")
+include(${CMAKE_CURRENT_SOURCE_DIR}/cmake/npm_install.cmake)
+graftal_npm_ci(${studio_src} ${GRAFTAL_WEB_NODE} web_npm_stamp)
 
 # The worker imports the package by its name: `graftal` is the assembled package.
 set(GRAFTAL_WEB_MODULES ${CMAKE_BINARY_DIR}/web-modules)
@@ -166,7 +158,7 @@ add_custom_command(
   COMMAND ${esbuild} ${studio_src}/src/worker.js --target=es2022 --external:node:*
           --outfile=${GRAFTAL_WEB_OUTPUT}/worker.js
   DEPENDS graftal_engine ${GRAFTAL_STUDIO_SOURCES} ${studio_src}/index.html
-          ${studio_src}/studio.css ${GRAFTAL_EXAMPLES} ${GRAFTAL_WEB_NODE}/npm-ci.stamp
+          ${studio_src}/studio.css ${GRAFTAL_EXAMPLES} ${web_npm_stamp}
           ${CMAKE_CURRENT_SOURCE_DIR}/scripts/web_page.mjs
           ${CMAKE_CURRENT_SOURCE_DIR}/web/index.js ${CMAKE_CURRENT_SOURCE_DIR}/web/engine.js
           ${CMAKE_CURRENT_SOURCE_DIR}/web/index.d.ts

@@ -71,9 +71,10 @@ Derivation::Derivation(LSystem lsystem, DerivationOptions options)
     if (decomposition_) decomposition_->setState(state_.data(), &options_.print, files_.get());
     const bool cpfgStreams = options_.random.value_or(lsystem_.random) == RandomStreams::Cpfg;
     if (cpfgStreams) deferQueries_ = lsystem_.cpfgViewBox;
-    // A model that never draws gives the same string with either generator: it keeps the
-    // parallel rewriting and the counted last step, which cpfg's order would rule out.
-    if (cpfgStreams && lsystem_.drawsRandomNumbers()) {
+    // A model that never draws (and cuts no branch, which cpfg does as the step reaches
+    // the cut) gives the same string either way: it keeps the parallel rewriting and the
+    // counted last step, which cpfg's order would rule out.
+    if (cpfgStreams && (lsystem_.drawsRandomNumbers() || lsystem_.usesCut())) {
         // cpfg's generators, drawn in cpfg's order: every step in string order. Only the
         // productions draw to choose (decomposition takes the first applicable one).
         // cpfg's batch run (`cpfg -g -str`, the string it saves) leaves the productions'
