@@ -4,10 +4,13 @@
 // In a deterministic, context-free, non-parametric L-system the string a module derives in
 // its remaining steps is fixed, so the walk goes depth first through the derivation tree
 // and runs each small subtree from a precompiled list of turtle operations; symbol counts
-// come from the productions alone (counts per step, multiplied out). The turtle performs
-// the same floating-point operations in the same order as the generic turtle on the
-// derived string, so every count and every bit of the box is the same, while the string
-// (one byte per module) is never held.
+// come from the productions alone (counts per step, multiplied out). A subtree that
+// starts again from a frame it already started from (the same bits of H and L) makes the
+// same moves: the second time its displacements are kept, and later it is replayed as a
+// run of additions with no turn computed (Zucker, "Optimizing L-Systems", 2020, memoises
+// subtrees the same way, by heading). Positions are still summed one move after another,
+// in the generic turtle's order, so every count and every bit of the box is the same as
+// the turtle's on the derived string, while the string (a byte per module) is never held.
 #pragma once
 
 #include <optional>
