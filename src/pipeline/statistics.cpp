@@ -20,7 +20,7 @@ ModelStatistics measured(const Model& model, const DeriveRequest& request, bool 
         // A flat D0-L system is measured from its productions, without writing the string:
         // the same numbers (the box is the one the road below would take), in a fraction of
         // the time and memory.
-        const bool viewVolume = !streamed && model.lsystem.legacyPfg;
+        const bool viewVolume = !streamed && !model.lsystem.legacyPfg;
         request.cancel.check();
         if (std::optional<StreamedMeasure> m = measureD0L(
                 model, steps, viewVolume ? MeasuredBox::CpfgViewVolume : MeasuredBox::Drawing,
