@@ -59,6 +59,9 @@ Op walkOp(TurtleOp op) {
 // Subtrees that expand to at most this many modules are walked from a list of operations;
 // larger ones are expanded one step.
 constexpr double kProgramModules = 4096;
+// All programs together (a byte per operation): a long derivation of many symbols would
+// otherwise hold thousands of programs of every size.
+constexpr std::size_t kOperations = std::size_t{32} << 20;
 // Programs with fewer moves are never replayed.
 constexpr std::uint64_t kReplayedMoves = 64;
 
@@ -74,7 +77,6 @@ class DerivationTree {
         std::uint32_t start = kNone, size = 0;  // in operations_; kNone: no program
         std::uint64_t turns = 0, moves = 0;
         bool replayable = false;  // leaves no bracket open and closes none it did not open
-        bool drawsOnly = false;   // every operation but the turns draws
     };
 
     DerivationTree(const SubtreeSummaries& sums, const std::array<TurtleOp, kMaxSymbols>& ops)
@@ -109,7 +111,8 @@ class DerivationTree {
                     }
                     modules_[at] = modules;
                     depth_[at] = d;
-                    if (modules > kProgramModules) {
+                    if (modules > kProgramModules ||
+                        operations_.size() + static_cast<std::size_t>(modules) > kOperations) {
                         p.start = kNone;
                         continue;
                     }
@@ -120,11 +123,9 @@ class DerivationTree {
                     }
                 }
                 p.size = static_cast<std::uint32_t>(operations_.size()) - p.start;
-                p.drawsOnly = true;
                 for (std::uint8_t op : operations(p)) {
                     p.turns += op == kLeft || op == kRight;
                     p.moves += op == kDraw || op == kMove;
-                    p.drawsOnly &= op == kDraw || op == kLeft || op == kRight;
                 }
                 // A short program runs faster than its replay is found.
                 p.replayable = depth_[at].net == 0 && depth_[at].lowest >= 0 &&
@@ -320,8 +321,11 @@ class Walk {
         r.opStart = static_cast<std::uint32_t>(replayOps_.size());
         perform<true>(t_, ops);
         r.moveCount = static_cast<std::uint32_t>(moves_.size()) - r.moveStart;
-        r.opCount = p.drawsOnly ? 0 : static_cast<std::uint32_t>(replayOps_.size()) - r.opStart;
-        if (p.drawsOnly) replayOps_.resize(r.opStart);
+        // Draws alone (branches that moved nothing left out) replay without a switch.
+        const bool drawsOnly = std::all_of(replayOps_.begin() + r.opStart, replayOps_.end(),
+                                           [](std::uint8_t op) { return op == kDraw; });
+        r.opCount = drawsOnly ? 0 : static_cast<std::uint32_t>(replayOps_.size()) - r.opStart;
+        if (drawsOnly) replayOps_.resize(r.opStart);
         r.hx = t_.hx, r.hy = t_.hy, r.lx = t_.lx, r.ly = t_.ly;
         it->second = static_cast<std::uint32_t>(replayList_.size());
         replayList_.push_back(r);
@@ -391,7 +395,14 @@ class Walk {
                     const Saved& r = *--t.top;
                     t.x = r.x, t.y = r.y, t.hx = r.hx, t.hy = r.hy, t.lx = r.lx, t.ly = r.ly;
                     t.inBounds = r.inBounds;
-                    if (kRecord) replayOps_.push_back(kPop);
+                    if (kRecord) {
+                        // A branch that moves nothing (a turn, a letter) changes nothing a
+                        // replay keeps: it leaves it out.
+                        if (!replayOps_.empty() && replayOps_.back() == kPush)
+                            replayOps_.pop_back();
+                        else
+                            replayOps_.push_back(kPop);
+                    }
                     break;
                 }
                 default:
@@ -497,9 +508,10 @@ std::optional<StreamedMeasure> measureD0L(const Model& model, int steps, Measure
         if (walkOp(ops[s]) == kDraw) m.segments += m.symbolCounts[s];
     }
     const DerivationTree tree(sums, ops);
-    // A ']' with nothing saved is the generic turtle's error to word.
+    // A ']' with nothing saved is the generic turtle's error to word; a stack of a million
+    // branches is left to the turtle that grows its own.
     const DerivationTree::Depth depth = tree.depthOf(sums.axiom());
-    if (depth.lowest < 0 || depth.highest > (std::int64_t{1} << 24)) return std::nullopt;
+    if (depth.lowest < 0 || depth.highest > (std::int64_t{1} << 20)) return std::nullopt;
 
     m.baseWidth = static_cast<float>(view.turtle.initialWidth);
     const auto stackDepth = static_cast<std::size_t>(depth.highest);
