@@ -161,7 +161,8 @@ TEST(D0LMeasure, StatsOfAD0LSystemAreThePlainTurtles) {
 }
 
 TEST(D0LMeasure, StopsWhenCancelled) {
-    const Model model = loadExample(fs::path(GRAFTAL_EXAMPLES_DIR) / "fig2.2-quadratic-koch-island.l");
+    const Model model =
+        loadExample(fs::path(GRAFTAL_EXAMPLES_DIR) / "fig2.2-quadratic-koch-island.l");
     CancellationToken cancel;
     cancel.cancel();
     EXPECT_THROW(measureD0L(model, 6, MeasuredBox::Drawing, cancel), Cancelled);

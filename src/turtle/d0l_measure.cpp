@@ -45,7 +45,7 @@ Op walkOp(TurtleOp op) {
         case TurtleOp::Pop:
             return kPop;
         case TurtleOp::None:
-        case TurtleOp::WidthDown:   // a width changes no box
+        case TurtleOp::WidthDown:  // a width changes no box
         case TurtleOp::WidthUp:
         case TurtleOp::ColorNext:
         case TurtleOp::ColorPrevious:
@@ -73,7 +73,7 @@ class DerivationTree {
         std::int64_t net = 0, highest = 0, lowest = 0;
     };
     struct Program {
-        std::uint32_t id = 0;                  // the (symbol, level) pair
+        std::uint32_t id = 0;                   // the (symbol, level) pair
         std::uint32_t start = kNone, size = 0;  // in operations_; kNone: no program
         std::uint64_t turns = 0, moves = 0;
         bool replayable = false;  // leaves no bracket open and closes none it did not open
@@ -95,8 +95,9 @@ class DerivationTree {
                     const Op op = walkOp(ops[s]);
                     modules_[at] = 1;
                     if (op != kNothing && op != kUnknown) operations_.push_back(op);
-                    depth_[at] = op == kPush ? Depth{1, 1, 0} : op == kPop ? Depth{-1, 0, -1}
-                                                                          : Depth{};
+                    depth_[at] = op == kPush  ? Depth{1, 1, 0}
+                                 : op == kPop ? Depth{-1, 0, -1}
+                                              : Depth{};
                 } else {
                     const std::span<const Symbol> succ =
                         sums_.successor(static_cast<Symbol>(s), level);
@@ -128,8 +129,8 @@ class DerivationTree {
                     p.moves += op == kDraw || op == kMove;
                 }
                 // A short program runs faster than its replay is found.
-                p.replayable = depth_[at].net == 0 && depth_[at].lowest >= 0 &&
-                               p.moves >= kReplayedMoves;
+                p.replayable =
+                    depth_[at].net == 0 && depth_[at].lowest >= 0 && p.moves >= kReplayedMoves;
             }
         }
     }
@@ -304,8 +305,8 @@ class Walk {
             perform<false>(t_, ops);
             return;
         }
-        auto [it, fresh] =
-            found != replays_.end() ? std::pair{found, false} : replays_.try_emplace(key, kSeenOnce);
+        auto [it, fresh] = found != replays_.end() ? std::pair{found, false}
+                                                   : replays_.try_emplace(key, kSeenOnce);
         if (it->second < kSeenOnce) {
             replay(t_, replayList_[it->second]);
             t_.untilOrthonormal -= p.turns;
