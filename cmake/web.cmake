@@ -58,7 +58,7 @@ set(GRAFTAL_WEB_SOURCES
   # turtle
   src/turtle/turtle.cpp src/turtle/streamed_interpretation.cpp
   src/turtle/subtree_summaries.cpp src/turtle/planar_measure.cpp
-  src/turtle/polyline_turtle.cpp
+  src/turtle/polyline_turtle.cpp src/turtle/d0l_measure.cpp
   # output: SVG, OBJ, PLY, glTF (no Cairo, Embree, encoders)
   src/output/image_transform.cpp src/output/svg_writer.cpp src/output/derivation_diagram.cpp
   src/output/obj_writer.cpp src/output/ply_writer.cpp src/output/gltf_writer.cpp

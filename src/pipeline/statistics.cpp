@@ -4,6 +4,7 @@
 
 #include "graftal/pipeline/stages.hpp"
 #include "graftal/rewrite/derivation.hpp"
+#include "graftal/turtle/d0l_measure.hpp"
 #include "graftal/turtle/streamed_interpretation.hpp"
 
 namespace graftal {
@@ -14,7 +15,27 @@ ModelStatistics measured(const Model& model, const DeriveRequest& request, bool 
     const int steps = stats.steps;
     const DerivationOptions options = derivationOptions(model, request);
     std::vector<Diagnostic> notes;
-    if (shouldStream(model, steps, request, true, false, false, notes)) {
+    const bool streamed = shouldStream(model, steps, request, true, false, false, notes);
+    if (geometry) {
+        // A flat D0-L system is measured from its productions, without writing the string:
+        // the same numbers (the box is the one the road below would take), in a fraction of
+        // the time and memory.
+        const bool viewVolume = !streamed && !model.lsystem.legacyPfg;
+        request.cancel.check();
+        if (std::optional<StreamedMeasure> m = measureD0L(
+                model, steps, viewVolume ? MeasuredBox::CpfgViewVolume : MeasuredBox::Drawing,
+                request.cancel)) {
+            stats.streamed = streamed;
+            stats.modules = m->modules;
+            stats.symbolCounts = std::move(m->symbolCounts);
+            stats.measured = true;
+            stats.segments = m->segments;
+            stats.polygons = m->polygons;
+            stats.bounds = m->bounds;
+            return stats;
+        }
+    }
+    if (streamed) {
         const StreamedMeasure m = measureStreamed(model, steps, options, geometry);
         stats.streamed = true;
         stats.modules = m.modules;
