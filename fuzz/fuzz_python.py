@@ -72,8 +72,9 @@ def exercise(rng, text):
     if isinstance(model, graftal.MapModel):
         geometry = rng.choice(["siero", "relaxed", "spline", rng.choice(VALUES)])
         str(model.derive(rng.choice([0, 1, 2, 3]), threads=1, geometry=geometry))
-        model.export(format=rng.choice(FORMATS), steps=rng.choice([0, 1, 2]), threads=1,
-                     size=(32, 32), fill=rng.choice(["none", "age", "labels", "x"]))
+        model.export(format=rng.choice(["svg", "png", "pdf", rng.choice(FORMATS)]),
+                     steps=rng.choice([0, 1, 2]), threads=1, size=(32, 32),
+                     fill=rng.choice(["none", "age", "sides", "labels", "x"]))
         return
     limits = dict(memory_limit="8M", threads=1)
     try:
