@@ -396,7 +396,8 @@ void bindModel(py::module_& m) {
           "they are called during every derivation. random ('graftal' or 'cpfg') chooses "
           "whose random numbers its derivations draw, as `random:` in the file (a model "
           "read with a view file draws cpfg's unless it says otherwise). Raises "
-          "graftal.ParseError when it does not parse; its warnings are in Model.warnings.");
+          "graftal.ParseError when it does not parse; its warnings are in Model.warnings. A "
+          "map L-system (a file that starts `map L-system:`) is a graftal.MapModel.");
     m.def("parse", &parseText, py::arg("text"), py::kw_only(), py::arg("file") = "",
           py::arg("defines") = py::none(), py::arg("view_text") = py::none(),
           py::arg("view_file") = "", py::arg("functions") = py::none(),
