@@ -12,6 +12,9 @@
    derivations one after the other in one process, divided by two.
 
 Prints one line per measure and writes them as JSON to BUILD_DIR/bench/results/python.json.
+Each time is given as wall seconds and as CPU seconds (user + system, every thread): on a
+shared, loaded machine the wall times measure the other users as much as graftal, while the
+CPU times still compare the work done. The load average is printed with them.
 """
 import argparse
 import json
@@ -26,7 +29,7 @@ HONDA = ROOT / "examples" / "honda-monopodial-tree.l"
 
 
 def timed(command, env=None):
-    """Wall seconds and peak RSS (MiB) of one process (its own, from wait4)."""
+    """Wall seconds, peak RSS (MiB) and CPU seconds of one process (its own, from wait4)."""
     start = time.perf_counter()
     process = subprocess.Popen(command, env=env, stdout=subprocess.DEVNULL)
     _, status, usage = os.wait4(process.pid, 0)
@@ -34,12 +37,18 @@ def timed(command, env=None):
     process.returncode = os.waitstatus_to_exitcode(status)
     if process.returncode:
         raise subprocess.CalledProcessError(process.returncode, command)
-    return seconds, usage.ru_maxrss / 1024
+    return seconds, usage.ru_maxrss / 1024, usage.ru_utime + usage.ru_stime
 
 
 def best(command, runs, env=None):
+    """The least wall and CPU seconds of `runs` runs, and the largest peak RSS."""
     results = [timed(command, env) for _ in range(runs)]
-    return min(r[0] for r in results), max(r[1] for r in results)
+    return (min(r[0] for r in results), max(r[1] for r in results),
+            min(r[2] for r in results))
+
+
+def load():
+    return "load average " + " ".join(f"{v:.1f}" for v in os.getloadavg())
 
 
 def python(code):
@@ -61,50 +70,72 @@ def main():
     report = {}
 
     # 1. The same derivation from the command and from Python, whole processes.
-    cli_stats, _ = best([graftal_exe, "stats", str(HONDA), "-n", n, "--no-geometry", "-q"],
-                        args.runs)
-    py_stats, _ = best(python(f"import graftal; graftal.load({str(HONDA)!r})"
-                              f".statistics({n}, geometry=False)"), args.runs, env)
-    cli_derive, _ = best([graftal_exe, "derive", str(HONDA), "-n", n, "-q"], args.runs)
+    honda = repr(str(HONDA))
+    cli_stats, _, cli_stats_cpu = best(
+        [graftal_exe, "stats", str(HONDA), "-n", n, "--no-geometry", "-q"], args.runs)
+    py_stats, _, py_stats_cpu = best(
+        python(f"import graftal; graftal.load({honda}).statistics({n}, geometry=False)"),
+        args.runs, env)
+    cli_derive, _, cli_derive_cpu = best([graftal_exe, "derive", str(HONDA), "-n", n, "-q"],
+                                         args.runs)
     # NumPy is imported in both, so that the peak RSS below compares the arrays alone.
-    py_derive, rss_derive = best(python(f"import numpy, graftal; graftal.load({str(HONDA)!r})"
-                                        f".derive({n})"), args.runs, env)
+    py_derive, rss_derive, py_derive_cpu = best(
+        python(f"import numpy, graftal; graftal.load({honda}).derive({n})"), args.runs, env)
     report["stats_cli_s"], report["stats_python_s"] = cli_stats, py_stats
     report["derive_cli_s"], report["derive_python_s"] = cli_derive, py_derive
-    print(f"python bench: Honda n={n} counted: graftal stats {cli_stats:.3f} s, Python "
-          f"{py_stats:.3f} s ({py_stats / cli_stats:.2f}x); derived: graftal derive > /dev/null "
-          f"{cli_derive:.3f} s, Python derive() {py_derive:.3f} s ({py_derive / cli_derive:.2f}x)")
+    cpu = {"stats_cli": cli_stats_cpu, "stats_python": py_stats_cpu,
+           "derive_cli": cli_derive_cpu, "derive_python": py_derive_cpu}
+    for k, v in cpu.items():
+        report[k + "_cpu_s"] = v
+    report["load"] = os.getloadavg()
+    print(f"python bench ({load()}): Honda n={n} counted: graftal stats {cli_stats:.3f} s, "
+          f"Python {py_stats:.3f} s ({py_stats / cli_stats:.2f}x); derived: graftal derive > "
+          f"/dev/null {cli_derive:.3f} s, Python derive() {py_derive:.3f} s "
+          f"({py_derive / cli_derive:.2f}x)")
+    print(f"python bench: the same in CPU seconds: stats {cpu['stats_cli']:.3f} against "
+          f"{cpu['stats_python']:.3f} ({cpu['stats_python'] / cpu['stats_cli']:.2f}x); derive "
+          f"{cpu['derive_cli']:.3f} against {cpu['derive_python']:.3f} "
+          f"({cpu['derive_python'] / cpu['derive_cli']:.2f}x)")
 
     # 2. No copy: summing the parameters through the NumPy view adds no memory.
-    _, rss_view = best(python(f"import numpy, graftal; s = graftal.load({str(HONDA)!r})"
-                              f".derive({n}); p = s.parameters; print(float(p.sum()))"),
-                       args.runs, env)
+    _, rss_view, _ = best(python(f"import numpy, graftal; s = graftal.load({honda})"
+                                 f".derive({n}); p = s.parameters; print(float(p.sum()))"),
+                          args.runs, env)
     report["rss_derive_mib"], report["rss_view_mib"] = rss_derive, rss_view
     print(f"python bench: peak RSS derive() {rss_derive:.0f} MiB, with the parameters read "
           f"as NumPy {rss_view:.0f} MiB ({rss_view / rss_derive:.3f}x)")
 
     # 3. A sweep on two worker processes against one process, one point after the other.
+    # CPU seconds: the serial run's own, and each worker's (client.run asks them).
     sweep = (
-        "import sys, time, graftal\n"
+        "import resource, sys, time, graftal\n"
         "from distributed import Client, LocalCluster\n"
+        "def cpu():\n"
+        "    r = resource.getrusage(resource.RUSAGE_SELF)\n"
+        "    return r.ru_utime + r.ru_stime\n"
         f"model = graftal.load({str(HONDA)!r})\n"
         f"grid = {{'R2': [0.5 + 0.4 * k / {args.points} for k in range({args.points})]}}\n"
-        f"t = time.perf_counter(); graftal.sweep(model, grid, steps={args.sweep_steps})\n"
-        "serial = time.perf_counter() - t\n"
+        "c0 = cpu(); t = time.perf_counter()\n"
+        f"graftal.sweep(model, grid, steps={args.sweep_steps})\n"
+        "serial = time.perf_counter() - t; serial_cpu = cpu() - c0\n"
         "with LocalCluster(n_workers=2, threads_per_worker=1, dashboard_address=None) as c, "
         "Client(c) as client:\n"
         f"    graftal.sweep(model, {{'R2': [0.6, 0.7]}}, client, steps=2)  # workers warm\n"
-        "    t = time.perf_counter()\n"
+        "    w0 = client.run(cpu); t = time.perf_counter()\n"
         f"    graftal.sweep(model, grid, client, steps={args.sweep_steps})\n"
-        "    parallel = time.perf_counter() - t\n"
-        "print(serial, parallel)\n")
+        "    parallel = time.perf_counter() - t; w1 = client.run(cpu)\n"
+        "    busiest = max(w1[w] - w0[w] for w in w1)\n"
+        "print(serial, parallel, serial_cpu, busiest)\n")
     out = subprocess.run([sys.executable, "-c", sweep], env=env, check=True,
                          capture_output=True, text=True).stdout.split()
-    serial, parallel = float(out[-2]), float(out[-1])
+    serial, parallel, serial_cpu, busiest = map(float, out[-4:])
     report["sweep_serial_s"], report["sweep_two_workers_s"] = serial, parallel
-    print(f"python bench: {args.points}-point sweep (n={args.sweep_steps}): one process "
-          f"{serial:.2f} s, two workers {parallel:.2f} s ({parallel / (serial / 2):.2f}x "
+    report["sweep_serial_cpu_s"], report["sweep_busiest_worker_cpu_s"] = serial_cpu, busiest
+    print(f"python bench ({load()}): {args.points}-point sweep (n={args.sweep_steps}): one "
+          f"process {serial:.2f} s, two workers {parallel:.2f} s ({parallel / (serial / 2):.2f}x "
           f"the serial time halved)")
+    print(f"python bench: in CPU seconds: one process {serial_cpu:.2f}, the busier worker "
+          f"{busiest:.2f} ({busiest / (serial_cpu / 2):.2f}x the serial CPU halved)")
 
     results = build / "bench" / "results"
     results.mkdir(parents=True, exist_ok=True)

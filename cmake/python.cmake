@@ -35,7 +35,9 @@ pybind11_add_module(graftal_python MODULE NO_EXTRAS
   src/python/module_string_binding.cpp
   src/python/derivation_binding.cpp
   src/python/geometry_binding.cpp
-  src/python/environment_binding.cpp)
+  src/python/environment_binding.cpp
+  src/python/functions_binding.cpp
+  src/python/map_binding.cpp)
 set_target_properties(graftal_python PROPERTIES
   OUTPUT_NAME _graftal
   LIBRARY_OUTPUT_DIRECTORY ${GRAFTAL_PYTHON_DIR}/graftal)

@@ -25,7 +25,8 @@ ROOT = pathlib.Path(__file__).resolve().parents[1]
 EXPECTED = (graftal.Error, TypeError, ValueError, OverflowError, KeyError, IndexError)
 FORMATS = ["svg", "png", "obj", "ply", "glb", "gif", "mid", "musicxml", "bmp", "", "frames"]
 VALUES = [None, -1, 0, 1, 2, 3, 7, 2**31, -2**63, 2**64, 0.5, float("nan"), "2", "1K", "x",
-          (1, 2), (1, 2, 3), [], {}, b"\0", "#zzzzzz", "#336699", "front", "single", "double"]
+          (1, 2), (1, 2, 3), [], {}, b"\0", "#zzzzzz", "#336699", "front", "single", "double",
+          "cpfg", "graftal"]
 
 
 def corpus():
@@ -62,12 +63,22 @@ def keywords(rng, names):
 
 def exercise(rng, text):
     """One input through the entry points; returns normally or raises what it may."""
+    functions = rng.choice([None, {1: lambda x: x * 2}, {"N": lambda x: 1 / x},
+                            {2: lambda x: "x"}, {1: rng.choice(VALUES)}])
     model = graftal.parse(text.decode("utf-8", "replace"), file="fuzz.l",
-                          defines=rng.choice([None, {}, {"N": rng.choice(VALUES[1:9])}]))
-    limits = dict(memory_limit="8M", threads=1)
+                          defines=rng.choice([None, {}, {"N": rng.choice(VALUES[1:9])}]),
+                          functions=None if rng.random() < 0.7 else functions)
     steps = rng.choice([None, 0, 1, 2, 3, 4])
+    if isinstance(model, graftal.MapModel):
+        geometry = rng.choice(["siero", "relaxed", "spline", rng.choice(VALUES)])
+        str(model.derive(rng.choice([0, 1, 2, 3]), threads=1, geometry=geometry))
+        model.export(format=rng.choice(["svg", "png", "pdf", rng.choice(FORMATS)]),
+                     steps=rng.choice([0, 1, 2]), threads=1, size=(32, 32),
+                     fill=rng.choice(["none", "age", "sides", "labels", "x"]))
+        return
+    limits = dict(memory_limit="8M", threads=1)
     try:
-        s = model.derive(steps, **limits, **keywords(rng, ["seed", "precision"]))
+        s = model.derive(steps, **limits, **keywords(rng, ["seed", "precision", "random"]))
     except graftal.Error:
         return
     str(s), len(s), s.symbol_counts()

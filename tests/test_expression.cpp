@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "graftal/graftal.hpp"
 #include "graftal/lang/expression.hpp"
 
 using namespace graftal;
@@ -108,4 +109,50 @@ TEST(Expression, RandomNeedsAStream) {
     ctx.uniform = [] { return 0.25; };
     EXPECT_DOUBLE_EQ(e.evaluate({}, &ctx), 2.5);
     EXPECT_THROW(e.evaluate({}), Error);
+}
+
+TEST(Expression, UserFunctionsAnswerFuncBeforeTheViewFile) {
+    DiagnosticList d;
+    ExpressionScope scope;
+    scope.variables = {"x"};
+    Expression e = compileExpression("func(2, x) + 1", {"t.l", 1, 1}, scope, d);
+    ASSERT_FALSE(d.hasErrors());
+    const std::vector<UserFunction> table = {{}, [](double x) { return 10 * x; }};
+    EvalContext ctx;
+    ctx.userFunctions = &table;
+    const std::vector<double> slots = {0.5};
+    EXPECT_DOUBLE_EQ(e.evaluate(slots, &ctx), 6);
+    // An id the program leaves empty (1) is the view file's: here there is none.
+    Expression first = compileExpression("func(1, x)", {"t.l", 1, 1}, scope, d);
+    try {
+        first.evaluate(slots, &ctx);
+        FAIL() << "func(1, x) has no function";
+    } catch (const Error& err) {
+        EXPECT_NE(err.diagnostics().front().message.find("names no function"), std::string::npos);
+    }
+}
+
+TEST(Expression, AUserFunctionsErrorNamesTheProductionModuleAndStep) {
+    ParseOptions options;
+    options.fileName = "user.l";
+    Model m = parse(
+                  "Lsystem: 1\nderivation length: 3\naxiom: A(0)\n"
+                  "A(t) : * --> F(func(1, t)) A(t + 1)\nendlsystem\n",
+                  options)
+                  .orThrow();
+    auto table = std::make_shared<std::vector<UserFunction>>();
+    table->push_back([](double t) {
+        if (t >= 2) throw Error(SourceLocation{}, "too late");
+        return t * t + 1;
+    });
+    m.lsystem.userFunctions = table;
+    EXPECT_EQ(derive(m, 2).toString(m.lsystem.symbols), "F(1)F(2)A(2)");
+    try {
+        derive(m, 3);
+        FAIL() << "the function refuses t = 2";
+    } catch (const Error& err) {
+        EXPECT_EQ(err.diagnostics().front().toString(),
+                  "user.l:4:1: error: 'func(1, t)': func(1, 2) failed: too late (while "
+                  "rewriting module 2 'A(2)' in derivation step 3)");
+    }
 }

@@ -15,6 +15,8 @@ from ._graftal import (  # noqa: F401
     Derivation,
     Diagnostic,
     Error,
+    Map,
+    MapModel,
     Mesh,
     Model,
     ModuleString,
@@ -31,6 +33,6 @@ from . import display as _display
 _display.install()
 
 __all__ = [
-    "Derivation", "Diagnostic", "Error", "Mesh", "Model", "ModuleString", "ParseError",
-    "Scene", "Viewer", "export_formats", "load", "parse", "picture", "show", "sweep",
+    "Derivation", "Diagnostic", "Error", "Map", "MapModel", "Mesh", "Model", "ModuleString",
+    "ParseError", "Scene", "Viewer", "export_formats", "load", "parse", "picture", "show", "sweep",
 ]

@@ -44,6 +44,9 @@ class EnvironmentObject(Protocol):
     def respond(self, step: int, queries: Queries) -> Any: ...
 
 Environment = Union[EnvironmentObject, Callable[[int, Queries], Any]]
+# func(id, x) answered by Python: keyed by the id or a name the model gives it.
+Functions = Mapping[Union[int, str], Callable[[float], float]]
+Random = str  # 'graftal' or 'cpfg'
 
 class Model:
     """A parsed model (graftal.load, graftal.parse)."""
@@ -56,21 +59,22 @@ class Model:
     warnings: list[Diagnostic]
     def derive(self, steps: int | None = None, *, seed: int | None = None, threads: int = 0,
                memory_limit: Size | None = None, precision: str = "single",
-               environment: Environment | None = None) -> ModuleString: ...
+               environment: Environment | None = None,
+               random: Random | None = None) -> ModuleString: ...
     def derivation(self, steps: int | None = None, *, seed: int | None = None,
                    threads: int = 0, memory_limit: Size | None = None,
-                   precision: str = "single",
-                   environment: Environment | None = None) -> Derivation: ...
+                   precision: str = "single", environment: Environment | None = None,
+                   random: Random | None = None) -> Derivation: ...
     def statistics(self, steps: int | None = None, *, seed: int | None = None,
                    threads: int = 0, memory_limit: Size | None = None, geometry: bool = True,
-                   stream: bool = False,
-                   environment: Environment | None = None) -> dict[str, Any]: ...
+                   stream: bool = False, environment: Environment | None = None,
+                   random: Random | None = None) -> dict[str, Any]: ...
     def predict(self, steps: int | None = None) -> dict[str, Any]: ...
     @overload
     def export(self, path: None = None, *, format: str, steps: int | None = None,
                seed: int | None = None, threads: int = 0, memory_limit: Size | None = None,
-               environment: Environment | None = None, notes: list[Diagnostic] | None = None,
-               size: int | tuple[int, int] | None = None, width: int | None = None,
+               environment: Environment | None = None, random: Random | None = None,
+               notes: list[Diagnostic] | None = None, size: int | tuple[int, int] | None = None, width: int | None = None,
                height: int | None = None, line_width: float | None = None,
                margin: float | None = None, background: Colour | None = None,
                line_color: Colour | None = None, fill_color: Colour | None = None,
@@ -153,10 +157,36 @@ class Viewer:
     def html(self) -> str: ...
     def _repr_html_(self) -> str: ...
 
+class Map:
+    """A derived map L-system: str() is the cells as `graftal derive` prints them."""
+    steps: int
+    vertices: int
+    edges: int
+    cells: int
+    positions: npt.NDArray[np.float64]  # (vertices, 3)
+    def statistics(self) -> dict[str, Any]: ...
+
+class MapModel:
+    """A map L-system (the book's chapter 5), read by graftal.load or graftal.parse."""
+    file: str
+    derivation_length: int
+    overrides: dict[str, str]
+    warnings: list[Diagnostic]
+    def derive(self, steps: int | None = None, *, threads: int = 0, geometry: str = "siero",
+               outline: str = "growing") -> Map: ...
+    def statistics(self, steps: int | None = None, *, threads: int = 0,
+                   geometry: str = "siero", outline: str = "growing") -> dict[str, Any]: ...
+    def export(self, path: PathLike | None = None, *, format: str | None = None,
+               steps: int | None = None, threads: int = 0, geometry: str = "siero",
+               outline: str = "growing", fill: str = "none", uniform_width: bool = False,
+               **options: Any) -> bytes | None: ...
+
 def load(path: PathLike, *, defines: Mapping[str, Define] | None = None,
-         view: PathLike | None = None) -> Model: ...
+         view: PathLike | None = None, functions: Functions | None = None,
+         random: Random | None = None) -> Model | MapModel: ...
 def parse(text: str, *, file: str = "", defines: Mapping[str, Define] | None = None,
-          view_text: str | None = None, view_file: str = "") -> Model: ...
+          view_text: str | None = None, view_file: str = "", functions: Functions | None = None,
+          random: Random | None = None) -> Model | MapModel: ...
 def export_formats() -> list[dict[str, Any]]: ...
 def picture(obj: Model | ModuleString | Scene, format: str = "svg", size: int = 400,
             **options: Any) -> bytes: ...

@@ -18,7 +18,7 @@ PICTURE_SIZE = 400
 
 def _settings(obj):
     """The model and the export keywords that remake what `obj` shows."""
-    if isinstance(obj, _graftal.Model):
+    if isinstance(obj, (_graftal.Model, _graftal.MapModel)):
         return obj, {}
     if isinstance(obj, (_graftal.ModuleString, _graftal.Scene)):
         return obj.model, dict(obj.derive_keywords)
@@ -26,6 +26,8 @@ def _settings(obj):
 
 
 def _is_3d(obj):
+    if isinstance(obj, _graftal.MapModel):
+        return False
     if isinstance(obj, _graftal.Scene):
         return obj.is_3d
     if isinstance(obj, _graftal.ModuleString):
@@ -109,6 +111,8 @@ def install():
     for cls in (_graftal.Model, _graftal.ModuleString, _graftal.Scene):
         cls._repr_svg_ = repr_svg
         cls._repr_png_ = repr_png
+    # A map L-system is drawn flat: always an SVG.
+    _graftal.MapModel._repr_svg_ = repr_svg
 
 
 __all__ = ["picture", "show", "Viewer", "PICTURE_SIZE"]

@@ -78,6 +78,20 @@ def run_point(model, point, steps=None, geometry=True, export=None, size=256, th
     return row
 
 
+def run_points(model, points, **options):
+    """Several points of a sweep in one task (run_point for each): a derivation of a few
+    tens of milliseconds is shorter than what Dask spends on a task."""
+    return [run_point(model, p, **options) for p in points]
+
+
+def _batches(points, client):
+    """The points in consecutive batches of at most 16, about four per worker thread so
+    that the workers stay balanced (one point a batch when there are few)."""
+    threads = sum(client.nthreads().values()) or 1
+    size = max(1, min(16, len(points) // (4 * threads)))
+    return [points[i:i + size] for i in range(0, len(points), size)]
+
+
 def sweep(model, grid, client=None, *, steps=None, geometry=True, export=None, size=256,
           meshes=False, tube_sides=8, threads=1, memory_limit=None):
     """Derives `model` once per point of `grid` and returns a pandas DataFrame, one row per
@@ -87,8 +101,9 @@ def sweep(model, grid, client=None, *, steps=None, geometry=True, export=None, s
     model   a graftal.Model, or the path of a model file or folder
     grid    {'R2': [0.6, 0.7], 'seed': range(4)} (every combination) or a list of points;
             'seed' sets the seed, other names #define constants
-    client  a dask.distributed.Client: each point is a task on its workers (threads=1 per
-            task, as the workers run tasks side by side); None runs here, in order
+    client  a dask.distributed.Client: the points are tasks on its workers, in batches of
+            consecutive points (threads=1 per task, as the workers run tasks side by side);
+            None runs here, in order
     export  a format name ('png', 'glb', ...): a column of that name holds each point's file
             as bytes (pictures size x size pixels)
     meshes  a column 'mesh' holds each point's mesh as NumPy arrays (see mesh_arrays),
@@ -104,14 +119,16 @@ def sweep(model, grid, client=None, *, steps=None, geometry=True, export=None, s
     if client is None:
         rows = [run_point(model, p, **options) for p in points]
     else:
-        # The model is sent once; every task refers to it.
+        # The model is sent once; every task refers to it. Each task derives a batch of
+        # consecutive points, in grid order.
         shared = client.scatter(model, broadcast=True)
-        futures = [client.submit(run_point, shared, p, pure=False, **options) for p in points]
-        rows = client.gather(futures)
+        futures = [client.submit(run_points, shared, batch, pure=False, **options)
+                   for batch in _batches(points, client)]
+        rows = [row for batch in client.gather(futures) for row in batch]
     frame = pandas.DataFrame(rows)
     names = list(points[0]) if points else []
     extra = [c for c in frame.columns if c not in names and c not in COLUMNS]
     return frame[names + [c for c in COLUMNS if c in frame.columns] + extra]
 
 
-__all__ = ["sweep", "grid_points", "run_point", "mesh_arrays"]
+__all__ = ["sweep", "grid_points", "run_point", "run_points", "mesh_arrays"]

@@ -44,6 +44,35 @@ void Expression::findShape() {
     }
 }
 
+namespace {
+
+// The program's function func(id, x) calls for `id`, when it gives one.
+const UserFunction* userFunction(const EvalContext* ctx, double id) {
+    if (!ctx || !ctx->userFunctions) return nullptr;
+    const auto& table = *ctx->userFunctions;
+    if (!(id >= 1 && id < static_cast<double>(table.size()) + 1)) return nullptr;
+    const UserFunction& f = table[static_cast<std::size_t>(id) - 1];
+    return f ? &f : nullptr;
+}
+
+}  // namespace
+
+// A function of the program, its failure worded as this expression's: the caller then adds
+// the production, the module and the step, as for any error of an expression.
+double Expression::callUserFunction(const UserFunction& f, double id, double x) const {
+    const std::string call = "func(" + formatNumber(id) + ", " + formatNumber(x) + ")";
+    double y = 0;
+    try {
+        y = f(x);
+    } catch (const Error& e) {
+        throw Error(location_, "'" + text_ + "': " + call + " failed: " + e.messages());
+    }
+    if (!std::isfinite(y))
+        throw Error(location_, "'" + text_ + "': " + call + " gave " + formatNumber(y) +
+                                   ", not a finite number");
+    return y;
+}
+
 double Expression::run(std::span<const double> slots, const EvalContext* ctx) const {
     std::array<double, 64> small;
     std::vector<double> big;
@@ -205,6 +234,10 @@ double Expression::run(std::span<const double> slots, const EvalContext* ctx) co
             case Op::Func: {
                 double id = st[sp - 1], x = st[sp];
                 --sp;
+                if (const UserFunction* user = userFunction(ctx, id)) {
+                    st[sp] = callUserFunction(*user, id, x);
+                    break;
+                }
                 std::size_t count = ctx && ctx->functions ? ctx->functions->size() : 0;
                 if (!(id >= 1 && id < static_cast<double>(count) + 1))
                     throw Error(

@@ -43,7 +43,8 @@ struct DeriveSettings {
     unsigned threads = 0;
     std::size_t memoryLimit = std::size_t(2) << 30;
     Precision precision = Precision::Single;
-    py::object environment;  // None: the file's `environment:` lines
+    std::optional<RandomStreams> random;  // random='cpfg' or 'graftal'; none: the model's
+    py::object environment;               // None: the file's `environment:` lines
 };
 
 // The pipeline's request for these settings, cancelled through `cancel`.
@@ -52,7 +53,9 @@ DeriveRequest deriveRequest(const DeriveSettings& settings, const CancellationTo
 // environment); checks what Python alone can get wrong (a size's unit, a precision's name).
 DeriveSettings deriveSettings(py::object steps, py::object seed, unsigned threads,
                               py::object memoryLimit, const std::string& precision,
-                              py::object environment);
+                              py::object environment, py::object random);
+// random='graftal' or 'cpfg' (as `--random`); None: nothing chosen.
+std::optional<RandomStreams> randomStreams(const py::object& random);
 
 // export()'s options (everything but the derivation's settings) into `request`; an unknown
 // keyword is a TypeError naming the known ones.
@@ -67,6 +70,9 @@ struct ModelSource {
     std::optional<std::string> view;  // load(): a view file's path; parse(): its text
     std::string viewFile;             // parse(): the view file's name
     std::map<std::string, std::string> defines;
+    std::optional<RandomStreams> random;  // load(random=...): overrides the model's
+    // load(functions=...): the dict of callables for func(id, x), or None.
+    std::shared_ptr<py::object> functions;
 };
 
 // A parsed model, shared by everything derived from it.
@@ -160,9 +166,25 @@ void bindModel(py::module_& m);
 void bindModuleString(py::module_& m);
 void bindDerivation(py::module_& m);
 void bindGeometry(py::module_& m);
+void bindMaps(py::module_& m);
+
+// Map L-systems (map_binding.cpp): whether a source is one (text starting `map L-system:`),
+// and the graftal.MapModel it reads as.
+bool isMapSource(const ModelSource& source);
+py::object loadMapModel(ModelSource source);
 
 // The Python environment object as the library's Environment (environment_binding.cpp).
 std::shared_ptr<Environment> pythonEnvironment(py::object environment);
+
+// Python callables as the model's functions for func(id, x) (functions_binding.cpp): the
+// keys are func()'s ids or names the model gives them; None: no table.
+std::shared_ptr<const std::vector<UserFunction>> userFunctionTable(const Model& model,
+                                                                   const py::object& functions);
+// A Python object that any thread may hold: the last owner releases it with the GIL.
+std::shared_ptr<py::object> heldForThreads(py::object object);
+// The exception a Python callable raised while the library ran (the GIL held): the
+// graftal.Error whose message contains `message` gets it as its __cause__ (errors.cpp).
+void rememberCause(py::handle exception, const std::string& message);
 
 // A diagnostic list as Python Diagnostic objects.
 py::list diagnosticList(const std::vector<Diagnostic>& diagnostics);

@@ -94,14 +94,16 @@ void bindDerivation(py::module_& m) {
     model.def(
         "derivation",
         [](const ModelHandle& h, py::object steps, py::object seed, unsigned threads,
-           py::object memoryLimit, const std::string& precision, py::object environment) {
+           py::object memoryLimit, const std::string& precision, py::object environment,
+           py::object random) {
             return std::make_unique<SteppedDerivation>(
                 h, deriveSettings(steps, seed, threads, memoryLimit, precision,
-                                  std::move(environment)));
+                                  std::move(environment), std::move(random)));
         },
         py::arg("steps") = py::none(), py::kw_only(), py::arg("seed") = py::none(),
         py::arg("threads") = 0u, py::arg("memory_limit") = py::none(),
         py::arg("precision") = "single", py::arg("environment") = py::none(),
+        py::arg("random") = py::none(),
         "The derivation step by step (graftal.Derivation): `for s in model.derivation(5)` "
         "yields the strings of steps 0 to 5. Same arguments as derive().");
 }

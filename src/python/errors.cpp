@@ -72,16 +72,33 @@ std::string joined(const std::vector<Diagnostic>& diagnostics) {
     return text;
 }
 
+// The exception of a Python callable the library called (rememberCause), and the words its
+// error carries. Raw references: they never outlive the interpreter's GIL.
+PyObject* pendingCause = nullptr;
+std::string pendingMessage;
+
 [[noreturn]] void raise(PyObject* type, const std::vector<Diagnostic>& diagnostics) {
-    py::object error = py::reinterpret_steal<py::object>(
-        PyObject_CallFunction(type, "s", joined(diagnostics).c_str()));
+    const std::string text = joined(diagnostics);
+    py::object error =
+        py::reinterpret_steal<py::object>(PyObject_CallFunction(type, "s", text.c_str()));
     if (!error) throw py::error_already_set();
     error.attr("diagnostics") = diagnosticList(diagnostics);
+    if (pendingCause) {
+        py::object cause = py::reinterpret_steal<py::object>(pendingCause);
+        pendingCause = nullptr;
+        if (text.find(pendingMessage) != std::string::npos) error.attr("__cause__") = cause;
+    }
     PyErr_SetObject(type, error.ptr());
     throw py::error_already_set();
 }
 
 }  // namespace
+
+void rememberCause(py::handle exception, const std::string& message) {
+    Py_XDECREF(pendingCause);
+    pendingCause = exception.inc_ref().ptr();
+    pendingMessage = message;
+}
 
 py::list diagnosticList(const std::vector<Diagnostic>& diagnostics) {
     py::list list;

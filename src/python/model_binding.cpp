@@ -82,6 +82,9 @@ ModelHandle handleOf(ModelSource source,
         parsed = read(source, source.defines);
     }
     if (!parsed.ok()) raiseParseError(parsed.errors());
+    if (source.random) parsed.model.lsystem.random = *source.random;
+    if (source.functions)
+        parsed.model.lsystem.userFunctions = userFunctionTable(parsed.model, *source.functions);
     ModelHandle h;
     h.warnings = parsed.warnings();
     h.model = std::make_shared<const Model>(std::move(parsed.model));
@@ -89,23 +92,39 @@ ModelHandle handleOf(ModelSource source,
     return h;
 }
 
-ModelHandle load(py::object path, py::object defines, py::object view) {
-    ModelSource source;
-    source.path = pathText(path);
-    source.defines = defineMap(defines);
-    if (!view.is_none()) source.view = pathText(view);
-    return handleOf(std::move(source));
+// load(functions=...): kept as the dict given (None: none), read again with the model.
+std::shared_ptr<py::object> functionDict(py::object functions) {
+    if (functions.is_none()) return nullptr;
+    if (!py::isinstance<py::dict>(functions))
+        throw py::type_error("functions: expected a dict such as {'light': f} or {1: f}");
+    return heldForThreads(py::dict(functions));
 }
 
-ModelHandle parseText(const std::string& text, const std::string& file, py::object defines,
-                      py::object viewText, const std::string& viewFile) {
+py::object load(py::object path, py::object defines, py::object view, py::object functions,
+                py::object random) {
     ModelSource source;
+    source.random = randomStreams(random);
+    source.path = pathText(path);
+    source.defines = defineMap(defines);
+    source.functions = functionDict(std::move(functions));
+    if (!view.is_none()) source.view = pathText(view);
+    if (isMapSource(source)) return loadMapModel(std::move(source));
+    return py::cast(handleOf(std::move(source)));
+}
+
+py::object parseText(const std::string& text, const std::string& file, py::object defines,
+                     py::object viewText, const std::string& viewFile, py::object functions,
+                     py::object random) {
+    ModelSource source;
+    source.random = randomStreams(random);
+    source.functions = functionDict(std::move(functions));
     source.text = text;
     source.file = file;
     source.defines = defineMap(defines);
     if (!viewText.is_none()) source.view = viewText.cast<std::string>();
     source.viewFile = viewFile;
-    return handleOf(std::move(source));
+    if (isMapSource(source)) return loadMapModel(std::move(source));
+    return py::cast(handleOf(std::move(source)));
 }
 
 // The same model read with more (or other) constants overridden.
@@ -119,11 +138,12 @@ ModelHandle withDefines(const ModelHandle& h, py::object defines) {
 py::tuple sourceState(const ModelHandle& h) {
     const ModelSource& s = *h.source;
     return py::make_tuple(s.path, s.text, s.file, s.view ? py::cast(*s.view) : py::none(),
-                          s.viewFile, s.defines);
+                          s.viewFile, s.defines, s.functions ? *s.functions : py::none(),
+                          s.random ? py::cast(static_cast<int>(*s.random)) : py::none());
 }
 
 ModelHandle fromState(const py::tuple& t) {
-    if (t.size() != 6) throw py::value_error("not a pickled graftal.Model");
+    if (t.size() != 6 && t.size() != 8) throw py::value_error("not a pickled graftal.Model");
     ModelSource s;
     s.path = t[0].cast<std::string>();
     s.text = t[1].cast<std::string>();
@@ -131,6 +151,10 @@ ModelHandle fromState(const py::tuple& t) {
     if (!t[3].is_none()) s.view = t[3].cast<std::string>();
     s.viewFile = t[4].cast<std::string>();
     s.defines = t[5].cast<std::map<std::string, std::string>>();
+    if (t.size() == 8) {
+        s.functions = functionDict(t[6]);
+        if (!t[7].is_none()) s.random = static_cast<RandomStreams>(t[7].cast<int>());
+    }
     return handleOf(std::move(s));
 }
 
@@ -235,12 +259,13 @@ void bindModel(py::module_& m) {
         .def(
             "derive",
             [](const ModelHandle& h, py::object steps, py::object seed, unsigned threads,
-               py::object memoryLimit, const std::string& precision, py::object environment) {
+               py::object memoryLimit, const std::string& precision, py::object environment,
+               py::object random) {
                 DerivedString d;
                 d.model = h.model;
                 d.source = h.source;
                 d.settings = deriveSettings(steps, seed, threads, memoryLimit, precision,
-                                            std::move(environment));
+                                            std::move(environment), std::move(random));
                 CancellationToken cancel;
                 const DeriveRequest request = deriveRequest(d.settings, cancel);
                 Derived derivedModel =
@@ -252,18 +277,23 @@ void bindModel(py::module_& m) {
             py::arg("steps") = py::none(), py::kw_only(), py::arg("seed") = py::none(),
             py::arg("threads") = 0u, py::arg("memory_limit") = py::none(),
             py::arg("precision") = "single", py::arg("environment") = py::none(),
+            py::arg("random") = py::none(),
             "Derives the model `steps` steps (default: its derivation length) and returns the "
             "ModuleString. seed overrides the file's; threads=0 uses every core (the result "
             "never depends on it); memory_limit (bytes, or '512M', default 2G) bounds the "
             "strings; precision 'single' stores parameters as float32 (as cpfg), 'double' as "
-            "float64; environment answers ?E modules (see graftal.Environment). The GIL is "
-            "released; Ctrl-C stops it with KeyboardInterrupt.")
+            "float64; environment answers ?E modules (see graftal.Environment); random "
+            "'cpfg' draws cpfg's random numbers in cpfg's order (the string cpfg gives, as "
+            "--random cpfg), 'graftal' graftal's streams (default: the model's choice). The "
+            "GIL is released; Ctrl-C stops it with KeyboardInterrupt.")
         .def(
             "statistics",
             [](const ModelHandle& h, py::object steps, py::object seed, unsigned threads,
-               py::object memoryLimit, bool geometry, bool stream, py::object environment) {
-                const DeriveSettings settings = deriveSettings(steps, seed, threads, memoryLimit,
-                                                               "single", std::move(environment));
+               py::object memoryLimit, bool geometry, bool stream, py::object environment,
+               py::object random) {
+                const DeriveSettings settings =
+                    deriveSettings(steps, seed, threads, memoryLimit, "single",
+                                   std::move(environment), std::move(random));
                 CancellationToken cancel;
                 DeriveRequest request = deriveRequest(settings, cancel);
                 if (stream) request.stream = StreamPolicy::Always;
@@ -274,7 +304,7 @@ void bindModel(py::module_& m) {
             py::arg("steps") = py::none(), py::kw_only(), py::arg("seed") = py::none(),
             py::arg("threads") = 0u, py::arg("memory_limit") = py::none(),
             py::arg("geometry") = true, py::arg("stream") = false,
-            py::arg("environment") = py::none(),
+            py::arg("environment") = py::none(), py::arg("random") = py::none(),
             "What `graftal stats` reports, as a dict: steps, modules, symbols (count per "
             "module name) and, with geometry, segments, polygons and bounds ((min xyz), "
             "(max xyz)) measured without keeping the drawing; streamed says whether the "
@@ -288,9 +318,10 @@ void bindModel(py::module_& m) {
             "export",
             [](const ModelHandle& h, py::object path, py::object format, py::object steps,
                py::object seed, unsigned threads, py::object memoryLimit, py::object environment,
-               py::object notes, py::kwargs options) -> py::object {
-                const DeriveSettings settings = deriveSettings(steps, seed, threads, memoryLimit,
-                                                               "single", std::move(environment));
+               py::object random, py::object notes, py::kwargs options) -> py::object {
+                const DeriveSettings settings =
+                    deriveSettings(steps, seed, threads, memoryLimit, "single",
+                                   std::move(environment), std::move(random));
                 CancellationToken cancel;
                 ExportRequest request;
                 static_cast<DeriveRequest&>(request) = deriveRequest(settings, cancel);
@@ -326,7 +357,7 @@ void bindModel(py::module_& m) {
             py::arg("path") = py::none(), py::kw_only(), py::arg("format") = py::none(),
             py::arg("steps") = py::none(), py::arg("seed") = py::none(), py::arg("threads") = 0u,
             py::arg("memory_limit") = py::none(), py::arg("environment") = py::none(),
-            py::arg("notes") = py::none(),
+            py::arg("random") = py::none(), py::arg("notes") = py::none(),
             "Writes the model as `graftal render`, `animate` and `music` would, in any format "
             "of graftal.export_formats(): to `path` (its extension names the format unless "
             "format= does; written atomically) or, with no path, returned as bytes. Options "
@@ -355,16 +386,25 @@ void bindModel(py::module_& m) {
         });
 
     m.def("load", &load, py::arg("path"), py::kw_only(), py::arg("defines") = py::none(),
-          py::arg("view") = py::none(),
+          py::arg("view") = py::none(), py::arg("functions") = py::none(),
+          py::arg("random") = py::none(),
           "Reads a model: an .l file, or a model folder (its one .l file with its one .v "
           "view file). defines overrides #define constants ({'N': 4}, as -D N=4); view names "
-          "a cpfg view file read after it. Raises graftal.ParseError when it does not parse; "
-          "its warnings are in Model.warnings.");
+          "a cpfg view file read after it. functions gives Python callables f(x) -> float "
+          "for func(id, x): keyed by the id, or by a name the model gives one (a #define "
+          "such as LIGHT whose value is the id, or an item of the view file's function set); "
+          "they are called during every derivation. random ('graftal' or 'cpfg') chooses "
+          "whose random numbers its derivations draw, as `random:` in the file (a model "
+          "read with a view file draws cpfg's unless it says otherwise). Raises "
+          "graftal.ParseError when it does not parse; its warnings are in Model.warnings. A "
+          "map L-system (a file that starts `map L-system:`) is a graftal.MapModel.");
     m.def("parse", &parseText, py::arg("text"), py::kw_only(), py::arg("file") = "",
           py::arg("defines") = py::none(), py::arg("view_text") = py::none(),
-          py::arg("view_file") = "",
+          py::arg("view_file") = "", py::arg("functions") = py::none(),
+          py::arg("random") = py::none(),
           "Parses .l text (file names it in diagnostics and finds the files it names). "
-          "view_text is a view file's text read after it. Raises graftal.ParseError.");
+          "view_text is a view file's text read after it; functions and random as for load(). "
+          "Raises graftal.ParseError.");
     m.def(
         "export_formats",
         [] {

@@ -11,4 +11,5 @@ PYBIND11_MODULE(_graftal, m) {
     bindModuleString(m);
     bindDerivation(m);
     bindGeometry(m);
+    bindMaps(m);
 }

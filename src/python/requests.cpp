@@ -76,10 +76,21 @@ Vec3 vector3(const std::string& keyword, py::handle value) {
 
 }  // namespace
 
+std::optional<RandomStreams> randomStreams(const py::object& random) {
+    if (random.is_none()) return std::nullopt;
+    const std::string name = py::isinstance<py::str>(random) ? random.cast<std::string>() : "";
+    if (name == "cpfg") return RandomStreams::Cpfg;
+    if (name == "graftal") return RandomStreams::Graftal;
+    throw py::value_error("random=" + py::repr(random).cast<std::string>() +
+                          ": expected 'graftal' (graftal's streams) or 'cpfg' (cpfg's "
+                          "generators in cpfg's order), as --random");
+}
+
 DeriveSettings deriveSettings(py::object steps, py::object seed, unsigned threads,
                               py::object memoryLimit, const std::string& precision,
-                              py::object environment) {
+                              py::object environment, py::object random) {
     DeriveSettings s;
+    s.random = randomStreams(random);
     if (!steps.is_none()) {
         if (!py::isinstance<py::int_>(steps) || py::isinstance<py::bool_>(steps))
             throw py::type_error("steps: expected an int");
@@ -114,6 +125,7 @@ DeriveRequest deriveRequest(const DeriveSettings& settings, const CancellationTo
     r.threads = settings.threads;
     r.memoryLimit = settings.memoryLimit;
     r.precision = settings.precision;
+    r.random = settings.random;
     r.cancel = cancel;
     if (!settings.environment.is_none()) r.environment = pythonEnvironment(settings.environment);
     return r;
@@ -126,6 +138,7 @@ py::dict deriveKeywords(const DeriveSettings& settings, int steps) {
     d["threads"] = settings.threads;
     d["memory_limit"] = settings.memoryLimit;
     d["environment"] = settings.environment;
+    if (settings.random) d["random"] = *settings.random == RandomStreams::Cpfg ? "cpfg" : "graftal";
     return d;
 }
 

@@ -95,6 +95,7 @@ Derivation::Derivation(LSystem lsystem, DerivationOptions options)
             ctx.print = &options_.print;
             ctx.files = files_.get();
             ctx.functions = &lsystem_.functions;
+            ctx.userFunctions = lsystem_.userFunctions.get();
             ctx.curves = &lsystem_.curves;
             ctx.cpfgRandom = cpfgRandom_.get();
             std::uint64_t draw = 0;

@@ -458,6 +458,7 @@ double RewritingEngine::evaluate(const Expression& e, const double* slots, Draws
     ctx.print = mayPrint ? print_ : nullptr;
     ctx.files = mayPrint ? files_ : nullptr;
     ctx.functions = &ls_.functions;
+    ctx.userFunctions = ls_.userFunctions.get();
     ctx.curves = &ls_.curves;
     return e.evaluate(vars, &ctx);
 }

@@ -33,6 +33,20 @@ def test_seed_and_defines_as_on_the_command_line(root, cli):
     assert model.overrides == {"R2": "0.8"}
 
 
+def test_cpfg_random_numbers_as_on_the_command_line(root, cli):
+    bush = "examples/fig3.16-stochastic-bush.l"
+    expected = cli("derive", bush, "-n", 4, "--random", "cpfg")
+    model = graftal.load(root / bush)
+    assert str(model.derive(4, random="cpfg")) + "\n" == expected
+    assert str(graftal.load(root / bush, random="cpfg").derive(4)) + "\n" == expected
+    assert str(model.derive(4)) + "\n" == cli("derive", bush, "-n", 4)
+    assert str(model.derive(4)) + "\n" != expected
+    assert str(model.derive(4, seed=5, random="cpfg")) + "\n" == cli(
+        "derive", bush, "-n", 4, "--random", "cpfg", "--seed", 5)
+    with pytest.raises(ValueError, match="random='lcg': expected 'graftal'"):
+        model.derive(random="lcg")
+
+
 def test_parse_text_and_print(root):
     text = (root / KOCH).read_text()
     koch = graftal.parse(text, file="koch.l")

@@ -32,6 +32,12 @@ class OutputFiles {
 // L-system's counter-based stream. Deterministic code passes nullptr.
 class CpfgRandom;
 
+// A function the program embedding the library supplies in place of a graphical function:
+// func(id, x) calls the id-th one, when set, with x (LSystem::userFunctions). The
+// derivation's threads may call it at once. It throws Error to stop the derivation; the
+// expression then names itself and the call in the error.
+using UserFunction = std::function<double(double x)>;
+
 struct EvalContext {
     // Returns a uniform number in [0, 1); called once per ran()/nran() evaluation.
     std::function<double()> uniform;
@@ -48,6 +54,9 @@ struct EvalContext {
     OutputFiles* files = nullptr;
     // The graphical functions func(id, x) reads (LSystem::functions), id counted from 1.
     const std::vector<GraphicalFunction>* functions = nullptr;
+    // The program's functions func(id, x) calls before the graphical ones, id counted from
+    // 1; an empty one leaves that id to the view file's function.
+    const std::vector<UserFunction>* userFunctions = nullptr;
     // The curves curveX/Y/Z(id, t) and curveGAL(id) read (LSystem::curves), id from 1.
     const std::vector<CurveXYZ>* curves = nullptr;
 };
@@ -92,7 +101,7 @@ class Expression {
         JumpIfTrue,
         Jump,
         Pop,
-        Func,         // func(id, x): the id-th graphical function of the EvalContext at x
+        Func,         // func(id, x): the id-th user or graphical function of the EvalContext
         Curve,        // curveX/Y/Z(id, t): coordinate fn (0, 1, 2) of the id-th curve at t
         CurveLength,  // curveGAL(id): the length of the id-th curve
     };
@@ -161,6 +170,7 @@ class Expression {
         }
     }
     double run(std::span<const double> slots, const EvalContext* ctx) const;
+    double callUserFunction(const UserFunction& f, double id, double x) const;
     void findShape();
 
     Shape shape_ = Shape::Program;

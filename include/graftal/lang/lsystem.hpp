@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -140,6 +141,9 @@ class LSystem {
     // Graphical functions for func(id, x), id counted from 1: the view file's `function:`
     // lines or its `function set:` (they are not part of the .l text).
     std::vector<GraphicalFunction> functions;
+    // Functions of the program that embeds the library, called by func(id, x) in place of
+    // the id-th graphical function (an empty one keeps it): never read from a file.
+    std::shared_ptr<const std::vector<UserFunction>> userFunctions;
     // Curves for curveX/Y/Z(id, t) and curveGAL(id), id counted from 1: the view file's
     // `curve:` lines.
     std::vector<CurveXYZ> curves;
