@@ -24,8 +24,8 @@ const std::string kKoch = (kExamples / "fig2.2-quadratic-koch-island.l").string(
 
 // The libraries of Cairo, Embree, the animation encoders, FFmpeg, libsmf, FluidSynth and
 // the studio's server.
-const char* const kHeavy[] = {"libcairo",   "libembree", "libtbb",     "libgif",
-                              "libwebp",    "libavcodec", "libavformat", "libsmf",
+const char* const kHeavy[] = {"libcairo",      "libembree",      "libtbb", "libgif",
+                              "libwebp",       "libavcodec",     "libavformat", "libsmf",
                               "libfluidsynth", "libcpp-httplib", "libssl", "libcrypto"};
 
 bool pluginsBuilt() {
@@ -69,13 +69,15 @@ TEST(Plugins, CommandsThatMakeNoPictureLoadNoHeavyLibrary) {
     if (!pluginsBuilt()) GTEST_SKIP() << "a static build links the writers";
     TempDir dir;
     const std::string svg = (dir.path() / "x.svg").string();
-    for (const std::string args :
-         {"--version", "derive " + kFibonacci, "stats " + kFibonacci, "derive " + kKoch,
-          "stats " + kKoch, "render " + kKoch + " -o " + svg,
-          "render -q " + kFibonacci + " -o " + svg}) {
+    const std::vector<std::string> commands = {
+        "--version",      "derive " + kFibonacci,           "stats " + kFibonacci,
+        "derive " + kKoch, "stats " + kKoch,                 "render " + kKoch + " -o " + svg,
+        "render -q " + kFibonacci + " -o " + svg};
+    for (const std::string& args : commands) {
         const std::vector<std::string> libraries = librariesOf(args);
         ASSERT_TRUE(loads(libraries, "libgraftal_core")) << "no loader report for " << args;
-        for (const char* heavy : kHeavy) EXPECT_FALSE(loads(libraries, heavy)) << args << ": " << heavy;
+        for (const char* heavy : kHeavy)
+            EXPECT_FALSE(loads(libraries, heavy)) << args << ": " << heavy;
     }
 }
 
@@ -83,7 +85,8 @@ TEST(Plugins, APngLoadsCairoThroughItsPlugin) {
     if (!pluginsBuilt()) GTEST_SKIP() << "a static build links the writers";
     TempDir dir;
     const fs::path png = dir.path() / "koch.png";
-    const std::vector<std::string> libraries = librariesOf("render " + kKoch + " -o " + png.string());
+    const std::vector<std::string> libraries =
+        librariesOf("render " + kKoch + " -o " + png.string());
     EXPECT_TRUE(loads(libraries, "graftal_plugin_cairo.so"));
     EXPECT_TRUE(loads(libraries, "libcairo"));
     EXPECT_FALSE(loads(libraries, "libembree"));
