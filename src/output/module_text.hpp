@@ -21,7 +21,8 @@ namespace graftal::module_text {
 // is copied without a check per byte.
 class TextBuffer {
   public:
-    explicit TextBuffer(std::size_t capacity = 0) { bytes_.resize(capacity); }
+    // The capacity is reserved, not filled: a short string touches only the pages it uses.
+    explicit TextBuffer(std::size_t capacity = 0) { bytes_.reserve(capacity); }
     std::size_t size() const { return used_; }
     bool empty() const { return used_ == 0; }
     void clear() { used_ = 0; }

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "graftal/turtle/streamed_interpretation.hpp"
+#include "streamed_png.hpp"
 #include "summarised_png.hpp"
 
 namespace graftal {
@@ -37,6 +38,31 @@ class PngDrawing : public StreamedDrawing {
 };
 
 }  // namespace
+
+// StreamedPng draws through the Cairo picture of streamed_png.cpp (openStreamedPng).
+StreamedPng::StreamedPng(const RenderOptions& o, const Bounds& bounds, double ink, bool anySegments,
+                         float baseWidth, std::vector<Rgb> palette, std::filesystem::path path)
+    : StreamedPng(o, bounds, ink, anySegments, baseWidth, std::move(palette),
+                  Destination::file(std::move(path))) {}
+
+StreamedPng::StreamedPng(const RenderOptions& o, const Bounds& bounds, double ink, bool anySegments,
+                         float baseWidth, std::vector<Rgb> palette, Destination destination)
+    : impl_(openStreamedPng(o, bounds, ink, anySegments, baseWidth, std::move(palette),
+                            std::move(destination))) {}
+
+StreamedPng::~StreamedPng() = default;
+
+void StreamedPng::segment(const Segment& s) {
+    impl_->segment(s);
+}
+
+void StreamedPng::polygon(std::span<const Vec3> vertices, std::uint16_t color) {
+    impl_->polygon(vertices, color);
+}
+
+void StreamedPng::finish() {
+    impl_->finish();
+}
 
 bool streamedPictureIsSummarised(const Model& model, int steps, std::size_t memoryLimit,
                                  const RenderOptions& picture) {

@@ -6,15 +6,24 @@
 
 #include "graftal/core/diagnostics.hpp"
 #include "graftal/output/output.hpp"
+#include "streamed_png.hpp"
 
 namespace graftal {
 
 namespace {
 constexpr int kSegmentsPerStroke = 50;  // as in cairo_writer.cpp: long paths stroke slowly
 constexpr double kMaxCoordinate = 4e6;  // Cairo's fixed point wraps beyond this
-}  // namespace
 
-struct StreamedPng::Impl {
+class CairoStreamedPng final : public StreamedPng::Impl {
+  public:
+    CairoStreamedPng(const RenderOptions& o, const Bounds& bounds, double ink, bool anySegments,
+                     float base, std::vector<Rgb> colors, Destination out);
+    ~CairoStreamedPng() override;
+    void segment(const Segment& s) override;
+    void polygon(std::span<const Vec3> vertices, std::uint16_t color) override;
+    void finish() override;
+
+  private:
     RenderOptions options;
     ImageTransform transform;
     double lineWidth = 1;
@@ -39,22 +48,17 @@ struct StreamedPng::Impl {
     }
 };
 
-StreamedPng::StreamedPng(const RenderOptions& o, const Bounds& bounds, double ink, bool anySegments,
-                         float baseWidth, std::vector<Rgb> palette, std::filesystem::path path)
-    : StreamedPng(o, bounds, ink, anySegments, baseWidth, std::move(palette),
-                  Destination::file(std::move(path))) {}
-
-StreamedPng::StreamedPng(const RenderOptions& o, const Bounds& bounds, double ink, bool anySegments,
-                         float baseWidth, std::vector<Rgb> palette, Destination destination)
-    : impl_(std::make_unique<Impl>()) {
-    Impl& m = *impl_;
+CairoStreamedPng::CairoStreamedPng(const RenderOptions& o, const Bounds& bounds, double ink,
+                                   bool anySegments, float base, std::vector<Rgb> colors,
+                                   Destination out) {
+    CairoStreamedPng& m = *this;
     m.options = o;
     m.transform = ImageTransform::fit(bounds, o);
-    m.baseWidth = baseWidth > 0 ? baseWidth : 1;
+    m.baseWidth = base > 0 ? base : 1;
     m.lineWidth = defaultLineWidth(ink, anySegments, bounds, o) / m.baseWidth;
-    m.palette = std::move(palette);
-    m.path = destination.path();
-    m.destination = std::move(destination);
+    m.palette = std::move(colors);
+    m.path = out.path();
+    m.destination = std::move(out);
     if (o.width < 1 || o.height < 1 || o.width > 32767 || o.height > 32767)
         throw Error(SourceLocation{m.path.string(), 0, 0},
                     "image size out of range (1 to 32767 per side)");
@@ -68,13 +72,13 @@ StreamedPng::StreamedPng(const RenderOptions& o, const Bounds& bounds, double in
     cairo_set_line_join(m.cr, CAIRO_LINE_JOIN_ROUND);
 }
 
-StreamedPng::~StreamedPng() {
-    if (impl_->cr) cairo_destroy(impl_->cr);
-    if (impl_->surface) cairo_surface_destroy(impl_->surface);
+CairoStreamedPng::~CairoStreamedPng() {
+    if (cr) cairo_destroy(cr);
+    if (surface) cairo_surface_destroy(surface);
 }
 
-void StreamedPng::segment(const Segment& s) {
-    Impl& m = *impl_;
+void CairoStreamedPng::segment(const Segment& s) {
+    CairoStreamedPng& m = *this;
     if (!(s.width > 0)) return;
     double ax = m.transform.x(s.a), ay = m.transform.y(s.a);
     double bx = m.transform.x(s.b), by = m.transform.y(s.b);
@@ -98,8 +102,8 @@ void StreamedPng::segment(const Segment& s) {
     ++m.inPath;
 }
 
-void StreamedPng::polygon(std::span<const Vec3> vertices, std::uint16_t color) {
-    Impl& m = *impl_;
+void CairoStreamedPng::polygon(std::span<const Vec3> vertices, std::uint16_t color) {
+    CairoStreamedPng& m = *this;
     m.stroke();
     Rgb c = m.options.fillColor ? *m.options.fillColor : m.colorOf(color);
     cairo_set_source_rgb(m.cr, c.r, c.g, c.b);
@@ -114,8 +118,8 @@ void StreamedPng::polygon(std::span<const Vec3> vertices, std::uint16_t color) {
     cairo_fill(m.cr);
 }
 
-void StreamedPng::finish() {
-    Impl& m = *impl_;
+void CairoStreamedPng::finish() {
+    CairoStreamedPng& m = *this;
     m.stroke();
     if (auto st = cairo_status(m.cr); st != CAIRO_STATUS_SUCCESS)
         throw Error(SourceLocation{m.path.string(), 0, 0},
@@ -132,6 +136,16 @@ void StreamedPng::finish() {
             throw Error(SourceLocation{m.path.string(), 0, 0},
                         std::string("cannot write PNG: ") + cairo_status_to_string(st));
     });
+}
+
+}  // namespace
+
+std::unique_ptr<StreamedPng::Impl> openStreamedPng(const RenderOptions& o, const Bounds& bounds,
+                                                   double ink, bool anySegments, float baseWidth,
+                                                   std::vector<Rgb> palette,
+                                                   Destination destination) {
+    return std::make_unique<CairoStreamedPng>(o, bounds, ink, anySegments, baseWidth,
+                                              std::move(palette), std::move(destination));
 }
 
 }  // namespace graftal

@@ -77,8 +77,10 @@ class StreamedPng {
     void polygon(std::span<const Vec3> vertices, std::uint16_t color);
     void finish();  // writes the file atomically; throws Error
 
-  private:
+    // The Cairo picture it draws into, made by the Cairo plugin in a shared build.
     struct Impl;
+
+  private:
     std::unique_ptr<Impl> impl_;
 };
 
