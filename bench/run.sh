@@ -74,9 +74,9 @@ measure() {  # measure OUT RUNS BUDGET TIMEOUT CMD...
 
 # ---- what this graftal can do ------------------------------------------------------------
 quiet=()
-if "$graftal" stats --help 2>/dev/null | grep -q -- '--quiet'; then quiet=(--quiet); fi
+if "$graftal" stats --help 2>/dev/null | grep -a -q -- '--quiet'; then quiet=(--quiet); fi
 have_stream=0
-if "$graftal" render --help 2>/dev/null | grep -q -- '--stream'; then have_stream=1; fi
+if "$graftal" render --help 2>/dev/null | grep -a -q -- '--stream'; then have_stream=1; fi
 
 # ---- the peer ----------------------------------------------------------------------------
 peer_ok=0

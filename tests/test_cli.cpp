@@ -200,12 +200,29 @@ TEST(Cli, UsageMistakesNameWhatWasTypedAndWhatWasExpected) {
              {"derive --steps=2x " + f.string(),
               "graftal: error: --steps 2x: expected a whole number of steps\n"},
              {"render " + f.string() + " -o k.png --margin wide",
-              "graftal: error: --margin wide: expected a number\n"}}) {
+              "graftal: error: --margin wide: expected a number\n"},
+             {"derive --precision half " + f.string(),
+              "graftal: error: --precision half: expected single or double\n"},
+             {"stats --random=mine " + f.string(),
+              "graftal: error: --random mine: expected cpfg or graftal\n"}}) {
         auto r = runGraftal(c.args);
         EXPECT_EQ(r.status, 2) << c.args;
         EXPECT_EQ(r.err, c.message) << c.args;
         EXPECT_EQ(r.out, "");
     }
+}
+
+// Every subcommand's help is text: the choices of --precision and --random are named, not
+// printed as the raw bytes of their enums (which made `grep` call the help binary).
+TEST(Cli, HelpIsPlainText) {
+    for (const char* sub : {"derive", "stats", "render", "music", "animate", "studio"}) {
+        auto r = runGraftal(std::string(sub) + " --help");
+        EXPECT_EQ(r.status, 0) << sub;
+        for (unsigned char c : r.out)
+            ASSERT_TRUE(c == '\n' || c >= 0x20) << sub << ": a control byte " << int(c);
+    }
+    EXPECT_NE(runGraftal("derive --help").out.find("--precision ENUM:{single, double}"),
+              std::string::npos);
 }
 
 TEST(Cli, HelpPointsToSubcommandHelpDocsAndExamples) {

@@ -313,7 +313,7 @@ int printPrediction(const InputOptions& in, const Loaded& l) {
         j["modules"] = g.expectedModules.back();
         j["modules_per_step"] = g.expectedModules;
     }
-    std::cout << j.dump(2) << '\n';
+    std::cout << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
     return 0;
 }
 
@@ -336,7 +336,7 @@ int runStats(const InputOptions& in, bool geometry, bool predict) {
         j["polygons"] = stats.polygons;
         j["bbox"] = bboxJson(stats.bounds);
     }
-    std::cout << j.dump(2) << '\n';
+    std::cout << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
     return 0;
 }
 

@@ -1,4 +1,6 @@
 // The graftal command: formats the library's errors, the library itself never prints.
+#include <array>
+#include <cctype>
 #include <CLI/CLI.hpp>
 #include <cstdlib>
 #include <iostream>
@@ -45,7 +47,8 @@ void addInputOptions(CLI::App& cmd, graftal::cli::InputOptions& in, std::string&
             std::map<std::string, graftal::RandomStreams>{
                 {"cpfg", graftal::RandomStreams::Cpfg},
                 {"graftal", graftal::RandomStreams::Graftal}},
-            CLI::ignore_case));
+            CLI::ignore_case)
+                       .description("{cpfg, graftal}"));
     cmd.add_option("--memory-limit", memoryLimit, "largest string memory, e.g. 2G (default 2G)");
     cmd.add_option("--threads", in.threads, "worker threads (default: all cores)");
     cmd.add_flag("--stream", in.stream,
@@ -60,7 +63,10 @@ void addInputOptions(CLI::App& cmd, graftal::cli::InputOptions& in, std::string&
         ->transform(CLI::CheckedTransformer(
             std::map<std::string, graftal::Precision>{{"single", graftal::Precision::Single},
                                                       {"double", graftal::Precision::Double}},
-            CLI::ignore_case));
+            CLI::ignore_case)
+                       // The values are one-byte enums, which the default text prints as
+                       // raw bytes: the help names the choices instead.
+                       .description("{single, double}"));
 }
 
 // What an option's value must be, in the words of its message.
@@ -111,6 +117,17 @@ std::string usageProblem(CLI::App& app, int argc, char** argv) {
                                                                : "--" + opt->get_lnames()[0]);
             const std::string longName =
                 opt->get_lnames().empty() ? name : "--" + opt->get_lnames()[0];
+            // The choices of the one-byte enums, whose values CLI11's message would print
+            // as raw bytes.
+            for (const auto& [option, choices] :
+                 {std::pair{"--precision", std::array{"single", "double"}},
+                  std::pair{"--random", std::array{"cpfg", "graftal"}}}) {
+                if (longName != option) continue;
+                std::string lowered = value;
+                for (char& c : lowered) c = static_cast<char>(std::tolower(c));
+                if (lowered != choices[0] && lowered != choices[1])
+                    return name + " " + value + ": expected " + choices[0] + " or " + choices[1];
+            }
             const std::string expected = expectedValue(longName);
             if (expected.rfind("a whole number", 0) == 0 || expected.rfind("a number", 0) == 0) {
                 if (opt->get_type_name().find("INT") == std::string::npos &&

@@ -122,7 +122,7 @@ int runMapStats(const InputOptions& in, const MapOptions& map) {
     for (const Vec3& p : m.position) b.extend(p);
     if (b.empty()) b.extend(Vec3{});
     j["bbox"] = {{"min", {b.min.x, b.min.y, b.min.z}}, {"max", {b.max.x, b.max.y, b.max.z}}};
-    std::cout << j.dump(2) << '\n';
+    std::cout << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
     return 0;
 }
 

@@ -19,13 +19,18 @@ using module_text::TextBuffer;
 constexpr std::size_t kModulesPerChunk = std::size_t(1) << 20;
 constexpr std::size_t kStreamPiece = std::size_t(4) << 20;
 
+// A string as JSON; bytes that are not UTF-8 (a file name, a symbol) become U+FFFD.
+std::string jsonString(std::string_view text) {
+    return nlohmann::json(text).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
 // A module's line but its parameters: ",\n    {"symbol": "F", "params": [" (the first
 // module's without the comma), and what closes it.
 struct JsonLines {
     explicit JsonLines(const SymbolTable& table) : heads(kMaxSymbols) {
         for (std::size_t s = 0; s < table.size(); ++s)
             heads[s] =
-                ",\n    {\"symbol\": " + nlohmann::json(table.name(static_cast<Symbol>(s))).dump() +
+                ",\n    {\"symbol\": " + jsonString(table.name(static_cast<Symbol>(s))) +
                 ", \"params\": [";
     }
     std::vector<std::string> heads;
@@ -33,7 +38,7 @@ struct JsonLines {
 };
 
 std::string headerText(const StringJsonHeader& header) {
-    return "{\n  \"file\": " + nlohmann::json(header.file).dump() +
+    return "{\n  \"file\": " + jsonString(header.file) +
            ",\n  \"steps\": " + std::to_string(header.steps) + ",\n  \"modules\": [";
 }
 

@@ -30,9 +30,15 @@ using nlohmann::json;
 
 namespace {
 
+// Text from the user's files (a model, an error message quoting it) may be any bytes: bytes
+// that are not UTF-8 go out as U+FFFD rather than failing the answer.
+std::string jsonText(const json& body) {
+    return body.dump(-1, ' ', false, json::error_handler_t::replace);
+}
+
 void sendJson(httplib::Response& res, const json& body, int status = 200) {
     res.status = status;
-    res.set_content(body.dump(), "application/json; charset=utf-8");
+    res.set_content(jsonText(body), "application/json; charset=utf-8");
 }
 
 void sendError(httplib::Response& res, int status, const std::string& message,
@@ -510,7 +516,7 @@ struct StudioServer::Impl {
                     {"meshAvailable",
                      !summarised && picture->segments <= options.limits.meshSegmentBudget}};
                 std::string out(4, '\0');
-                const std::string metaText = meta.dump();
+                const std::string metaText = jsonText(meta);
                 const std::uint32_t length = static_cast<std::uint32_t>(metaText.size());
                 std::memcpy(out.data(), &length, 4);
                 out += metaText;
