@@ -500,18 +500,25 @@ def cmd_report(args: argparse.Namespace) -> int:
     if args.doc and only:
         print(f"\npartial run (--only): {args.doc} left alone; table in {res / 'table.md'}")
     elif args.doc:
-        doc = Path(args.doc)
-        text = doc.read_text() if doc.exists() else ""
-        begin, end = "<!-- bench:begin -->", "<!-- bench:end -->"
-        if begin in text and end in text and text.index(begin) < text.index(end):
-            head, rest = text.split(begin, 1)
-            _, tail = rest.split(end, 1)
-            doc.write_text(f"{head}{begin}\n{md}\n{end}{tail}")
-            print(f"\ntable written to {doc}")
+        if replace_between_markers(Path(args.doc), "bench", md):
+            print(f"\ntable written to {args.doc}")
         else:
-            print(f"\n{doc} has no {begin} ... {end} markers; table left in {res / 'table.md'}",
-                  file=sys.stderr)
+            print(f"\n{args.doc} has no <!-- bench:begin --> ... <!-- bench:end --> markers; "
+                  f"table left in {res / 'table.md'}", file=sys.stderr)
     return 0
+
+
+def replace_between_markers(doc: Path, name: str, md: str) -> bool:
+    """Puts `md` between <!-- NAME:begin --> and <!-- NAME:end --> in `doc`; False (and the
+    doc left alone) when it has no such pair."""
+    text = doc.read_text() if doc.exists() else ""
+    begin, end = f"<!-- {name}:begin -->", f"<!-- {name}:end -->"
+    if not (begin in text and end in text and text.index(begin) < text.index(end)):
+        return False
+    head, rest = text.split(begin, 1)
+    _, tail = rest.split(end, 1)
+    doc.write_text(f"{head}{begin}\n{md}\n{end}{tail}")
+    return True
 
 
 def main() -> int:

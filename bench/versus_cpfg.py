@@ -48,7 +48,7 @@ import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from report import fmt_bytes, fmt_time, loadavg  # noqa: E402
+from report import fmt_bytes, fmt_time, loadavg, replace_between_markers  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
 MODELS = HERE / "cpfg"
@@ -363,16 +363,11 @@ def table(data: dict) -> str:
 
 
 def write_doc(doc: Path, md: str) -> None:
-    text = doc.read_text() if doc.exists() else ""
-    begin, end = "<!-- cpfg:begin -->", "<!-- cpfg:end -->"
-    if begin in text and end in text and text.index(begin) < text.index(end):
-        head, rest = text.split(begin, 1)
-        _, tail = rest.split(end, 1)
-        doc.write_text(f"{head}{begin}\n{md}\n{end}{tail}")
+    if replace_between_markers(doc, "cpfg", md):
         print(f"bench: the cpfg table written to {doc}", file=sys.stderr)
     else:
-        print(f"bench: {doc} has no {begin} … {end} markers; the table is left in the results",
-              file=sys.stderr)
+        print(f"bench: {doc} has no <!-- cpfg:begin --> … <!-- cpfg:end --> markers; the table "
+              "is left in the results", file=sys.stderr)
 
 
 def main() -> int:

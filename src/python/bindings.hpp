@@ -61,6 +61,13 @@ std::optional<RandomStreams> randomStreams(const py::object& random);
 // keyword is a TypeError naming the known ones.
 void applyExportOptions(ExportRequest& request, const py::dict& options);
 
+// Where export() writes: to `path` (a str or os.PathLike) or, with none, into `bytes`, named
+// `stem` and the format's extension; format= (a str) sets the request's format first.
+// `example` is the format a message suggests when neither is given.
+Destination exportDestination(ExportRequest& request, const py::object& path,
+                              const py::object& format, std::string& bytes,
+                              const std::string& stem, const char* example);
+
 // Where a model came from: enough to read it again (with other defines, or in another
 // process: a Model pickles as its source, which is how a sweep sends it to Dask's workers).
 struct ModelSource {

@@ -142,24 +142,10 @@ py::object exportMapPicture(const MapHandle& h, py::object path, py::object form
     applyExportOptions(request, options);
     if (request.spline && *request.spline > 0)
         request.map.drawing.splineSubdivisions = *request.spline;
-    if (!format.is_none()) {
-        if (!py::isinstance<py::str>(format))
-            throw py::type_error("format: expected a name such as 'png'");
-        request.format = format.cast<std::string>();
-    }
     std::string bytes;
     const bool toMemory = path.is_none();
-    if (toMemory && request.format.empty())
-        throw py::value_error("export(): name a format (format='svg') or a path");
-    std::optional<Destination> destination;
-    if (toMemory) {
-        const ExportFormat* f = findExportFormat(request.format);
-        destination = Destination::memory(bytes, "map" + (f ? std::string(f->extension) : ""));
-    } else {
-        destination = Destination::file(
-            py::str(py::module_::import("os").attr("fspath")(path)).cast<std::string>());
-    }
-    interruptible(cancel, [&] { exportMap(*h.system, *destination, request); });
+    const Destination destination = exportDestination(request, path, format, bytes, "map", "svg");
+    interruptible(cancel, [&] { exportMap(*h.system, destination, request); });
     if (!toMemory) return py::none();
     return py::bytes(bytes);
 }

@@ -326,25 +326,12 @@ void bindModel(py::module_& m) {
                 ExportRequest request;
                 static_cast<DeriveRequest&>(request) = deriveRequest(settings, cancel);
                 applyExportOptions(request, options);
-                if (!format.is_none()) {
-                    if (!py::isinstance<py::str>(format))
-                        throw py::type_error("format: expected a name such as 'png'");
-                    request.format = format.cast<std::string>();
-                }
                 std::string bytes;
                 const bool toMemory = path.is_none();
-                if (toMemory && request.format.empty())
-                    throw py::value_error("export(): name a format (format='png') or a path");
-                std::optional<Destination> destination;
-                if (toMemory) {
-                    const ExportFormat* f = findExportFormat(request.format);
-                    const std::string ext = f ? std::string(f->extension) : std::string();
-                    destination = Destination::memory(bytes, h.model->lsystem.name + ext);
-                } else {
-                    destination = Destination::file(pathText(path));
-                }
+                const Destination destination = exportDestination(
+                    request, path, format, bytes, h.model->lsystem.name, "png");
                 const ExportResult result = interruptible(
-                    cancel, [&] { return exportModel(*h.model, *destination, request); });
+                    cancel, [&] { return exportModel(*h.model, destination, request); });
                 if (!notes.is_none()) {
                     if (!py::isinstance<py::list>(notes))
                         throw py::type_error("notes: expected a list");

@@ -146,6 +146,24 @@ py::dict deriveKeywords(const DeriveSettings& settings, int steps) {
 void applyExportOption(ExportRequest& request, const std::string& k, py::handle value);
 
 // export()'s options (export's keyword arguments besides the derivation's) into `request`.
+Destination exportDestination(ExportRequest& request, const py::object& path,
+                              const py::object& format, std::string& bytes,
+                              const std::string& stem, const char* example) {
+    if (!format.is_none()) {
+        if (!py::isinstance<py::str>(format))
+            throw py::type_error("format: expected a name such as 'png'");
+        request.format = format.cast<std::string>();
+    }
+    if (!path.is_none())
+        return Destination::file(
+            py::str(py::module_::import("os").attr("fspath")(path)).cast<std::string>());
+    if (request.format.empty())
+        throw py::value_error(std::string("export(): name a format (format='") + example +
+                              "') or a path");
+    const ExportFormat* f = findExportFormat(request.format);
+    return Destination::memory(bytes, stem + (f ? std::string(f->extension) : std::string()));
+}
+
 void applyExportOptions(ExportRequest& request, const py::dict& options) {
     static const std::vector<std::string> known = {"size",
                                                    "width",
