@@ -164,6 +164,10 @@ auto interruptible(CancellationToken cancel, F&& work) -> decltype(work()) {
     if constexpr (!std::is_void_v<Result>) return std::move(*result);
 }
 
+// defines= as the library's overrides: names to text ({'N': 3} is N=3); a TypeError for
+// anything but str names and number or str values.
+std::map<std::string, std::string> defineMap(const py::object& defines);
+
 // The keywords that derive the same string again (export(**keywords) draws it).
 py::dict deriveKeywords(const DeriveSettings& settings, int steps);
 

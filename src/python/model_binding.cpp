@@ -11,8 +11,6 @@
 
 namespace graftal::python {
 
-namespace {
-
 std::map<std::string, std::string> defineMap(const py::object& defines) {
     std::map<std::string, std::string> map;
     if (defines.is_none()) return map;
@@ -29,6 +27,8 @@ std::map<std::string, std::string> defineMap(const py::object& defines) {
     }
     return map;
 }
+
+namespace {
 
 std::string pathText(const py::object& path) {
     return py::str(py::module_::import("os").attr("fspath")(path)).cast<std::string>();
