@@ -481,8 +481,12 @@ bool startServer(McppServer& s) {
     if (pid == 0) {
         // The process only runs mcpp: a crash there must end it, not run the handlers the
         // host installed (a fuzzer's or a sanitizer's would report the host's input).
-        for (int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT, SIGTERM, SIGINT, SIGPIPE})
+        for (int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT, SIGTERM, SIGPIPE})
             ::signal(sig, SIG_DFL);
+        // Ctrl-C reaches the whole process group: the host decides what it stops (an
+        // interpreter goes on, and so does its preprocessor); a host that ends closes the
+        // socket, and this process ends with it.
+        ::signal(SIGINT, SIG_IGN);
         // It keeps its three descriptors (as 3, 4, 5) and /dev/null as 0-2, and none of the
         // host's: a pipe the host writes to must reach its end when the host's does.
         ::close(control[0]), ::close(outPipe[0]), ::close(errPipe[0]);
