@@ -121,6 +121,8 @@ def run_points(model, points, **options):
     def with_defines(model, defines):
         key = tuple(sorted((k, repr(v)) for k, v in defines.items()))
         if key not in read:
+            if len(read) >= 64:  # a long serial sweep keeps a few models, not every one
+                read.clear()
             read[key] = _with_defines(model, defines)
         return read[key]
 
