@@ -1,6 +1,8 @@
-// The C preprocessor every .l file goes through (mcpp in a child process): macros,
+// The C preprocessor every .l file goes through (mcpp in a child process, kept): macros,
 // conditionals, #include relative to the model, -D, and locations in the user's files.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <string>
 
@@ -259,4 +261,49 @@ TEST(Preprocessor, CommandLineDefineSelectsABranch) {
     EXPECT_EQ(derived(parseLSystem(model, o), 1), "A(2)");
     o.defines["WITH_BRANCH"] = "1";
     EXPECT_EQ(derived(parseLSystem(model, o), 2), "A(4)[B][B]");
+}
+
+TEST(Preprocessor, RunsAfterAStoppedRunAndInAForkedProcessReadTheirOwnDefines) {
+    // mcpp runs in a process kept from one model to the next: a -D or #define of one run
+    // never reaches the next, a run stopped at the size cap leaves the next one whole, and
+    // a forked copy of this process (a worker) preprocesses with its own.
+    const std::string model =
+        "Lsystem: 1\n"
+        "axiom: A(N)\n"
+        "endlsystem\n";
+    ParseOptions o;
+    o.fileName = "n.l";
+    for (int n = 1; n <= 30; ++n) {
+        o.defines["N"] = std::to_string(n);
+        EXPECT_EQ(derived(parseLSystem("#define N 0\n" + model, o), 0),
+                  "A(" + std::to_string(n) + ")");
+    }
+    std::string big = doublingMacros(8) + "Lsystem: 1\naxiom: X\n";
+    for (int i = 0; i < 40; ++i) big += "X --> A8\n";
+    big += "\nendlsystem\n";
+    PreprocessOptions capped;
+    capped.fileName = "big.l";
+    capped.maxOutputBytes = 8 << 10;
+    SourceText src;
+    DiagnosticList diags;
+    EXPECT_FALSE(preprocessSource(big, capped, src, diags));
+    EXPECT_EQ(derived(parse("#define N 7\n" + model), 0), "A(7)");
+    const pid_t child = ::fork();
+    if (child == 0) {
+        // Only the preprocessor here: a fork has none of the parent's worker threads.
+        PreprocessOptions mine;
+        mine.fileName = "n.l";
+        mine.defines["N"] = "9";
+        SourceText out;
+        DiagnosticList messages;
+        bool right = preprocessSource("#define N 0\n" + model, mine, out, messages);
+        bool nine = false;
+        for (const auto& line : out.lines) nine = nine || line.text == "axiom: A(9)";
+        right = right && nine;
+        ::_exit(right ? 0 : 1);
+    }
+    int status = -1;
+    ASSERT_EQ(::waitpid(child, &status, 0), child);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+    EXPECT_EQ(derived(parse("#define N 8\n" + model), 0), "A(8)");
 }

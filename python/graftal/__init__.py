@@ -26,11 +26,45 @@ from ._graftal import (  # noqa: F401
     load,
     parse,
 )
-from .display import Viewer, picture, show  # noqa: F401
-from .sweep import sweep  # noqa: F401
-from . import display as _display
 
-_display.install()
+# Importing graftal costs little more than loading the library: the pictures' helpers
+# (graftal.display) and the sweeps' (graftal._sweep, which imports pandas) are imported when
+# first used, and NumPy when an array is first asked for.
+_LAZY = {"Viewer": "display", "picture": "display", "show": "display", "sweep": "_sweep"}
+
+
+def __getattr__(name):
+    if name in _LAZY:
+        import importlib
+
+        value = getattr(importlib.import_module("." + _LAZY[name], __name__), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'graftal' has no attribute '{name}'")
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_LAZY))
+
+
+def _repr_svg_(obj):
+    from . import display
+
+    return display.repr_svg(obj)
+
+
+def _repr_png_(obj):
+    from . import display
+
+    return display.repr_png(obj)
+
+
+# Jupyter's pictures of models, strings and scenes (a map L-system is drawn flat: SVG only).
+for _cls in (Model, ModuleString, Scene):
+    _cls._repr_svg_ = _repr_svg_
+    _cls._repr_png_ = _repr_png_
+MapModel._repr_svg_ = _repr_svg_
+del _cls
 
 __all__ = [
     "Derivation", "Diagnostic", "Error", "Map", "MapModel", "Mesh", "Model", "ModuleString",

@@ -151,8 +151,9 @@ class Mesh:
     palette: npt.NDArray[np.float32]
 
 class Viewer:
-    """graftal.show()'s 3D view, displayed by Jupyter."""
-    glb: bytes
+    """graftal.show()'s 3D view (a map's flat SVG), displayed by Jupyter."""
+    glb: bytes | None
+    svg: bytes | None
     height: int
     def html(self) -> str: ...
     def _repr_html_(self) -> str: ...
@@ -180,6 +181,7 @@ class MapModel:
                steps: int | None = None, threads: int = 0, geometry: str = "siero",
                outline: str = "growing", fill: str = "none", uniform_width: bool = False,
                **options: Any) -> bytes | None: ...
+    def with_defines(self, defines: Mapping[str, Define]) -> MapModel: ...
 
 def load(path: PathLike, *, defines: Mapping[str, Define] | None = None,
          view: PathLike | None = None, functions: Functions | None = None,
@@ -190,8 +192,9 @@ def parse(text: str, *, file: str = "", defines: Mapping[str, Define] | None = N
 def export_formats() -> list[dict[str, Any]]: ...
 def picture(obj: Model | ModuleString | Scene, format: str = "svg", size: int = 400,
             **options: Any) -> bytes: ...
-def show(obj: Model | ModuleString | Scene, height: int = 480, **options: Any) -> Viewer: ...
-def sweep(model: Model | PathLike, grid: Mapping[str, Any] | Sequence[Mapping[str, Any]],
+def show(obj: Model | MapModel | ModuleString | Scene, height: int = 480,
+         **options: Any) -> Viewer: ...
+def sweep(model: Model | MapModel | PathLike, grid: Mapping[str, Any] | Sequence[Mapping[str, Any]],
           client: Any = None, *, steps: int | None = None, geometry: bool = True,
           export: str | None = None, size: int = 256, meshes: bool = False,
           tube_sides: int = 8, threads: int = 1,

@@ -71,14 +71,22 @@ class Viewer:
     """An interactive 3D view of a model in a notebook's output cell (graftal.show()).
 
     Its HTML holds the studio's bundled three.js viewer and the model's mesh as GLB, so
-    the notebook shows it offline and keeps showing it once saved."""
+    the notebook shows it offline and keeps showing it once saved. A map L-system, drawn
+    flat, is its SVG picture instead (`svg`; `glb` is then None)."""
 
-    def __init__(self, glb, height=480):
+    def __init__(self, glb, height=480, svg=None):
         self.glb = glb
         self.height = height
+        self.svg = svg
 
     def _repr_html_(self):
         element = "graftal-" + uuid.uuid4().hex
+        if self.glb is None:
+            # The SVG scaled into the cell, its proportions kept.
+            return (f'<div id="{element}" style="width:100%;height:{int(self.height)}px">'
+                    f'<img style="width:100%;height:100%;object-fit:contain" alt="map" '
+                    f'src="data:image/svg+xml;base64,{base64.b64encode(self.svg).decode()}">'
+                    "</div>")
         data = base64.b64encode(self.glb).decode()
         return (
             f'<div id="{element}" style="width:100%;height:{int(self.height)}px"></div>'
@@ -92,27 +100,23 @@ class Viewer:
                 f"<body style=margin:0>{self._repr_html_()}</body>")
 
     def __repr__(self):
+        if self.glb is None:
+            return f"<graftal.Viewer {len(self.svg)} bytes of SVG>"
         return f"<graftal.Viewer {len(self.glb)} bytes of GLB>"
 
 
 def show(obj, height=480, **options):
     """An interactive 3D view (orbit with the mouse) of a Model, ModuleString or Scene:
     its mesh as `graftal render -o x.glb` writes it, in the studio's three.js viewer.
-    Returns a Viewer, which Jupyter displays; options go to Model.export."""
+    A MapModel, drawn flat, shows as its SVG picture scaled to the cell. Returns a Viewer,
+    which Jupyter displays; options go to Model.export (MapModel.export for a map)."""
     model, keywords = _settings(obj)
     keywords.update(options)
+    if isinstance(model, _graftal.MapModel):
+        return Viewer(None, height, svg=model.export(format="svg", **keywords))
     keywords.setdefault("glb_compression", True)
     glb = model.export(format="glb", **keywords)
     return Viewer(glb, height)
-
-
-def install():
-    """Gives the module's classes their Jupyter representations."""
-    for cls in (_graftal.Model, _graftal.ModuleString, _graftal.Scene):
-        cls._repr_svg_ = repr_svg
-        cls._repr_png_ = repr_png
-    # A map L-system is drawn flat: always an SVG.
-    _graftal.MapModel._repr_svg_ = repr_svg
 
 
 __all__ = ["picture", "show", "Viewer", "PICTURE_SIZE"]

@@ -14,19 +14,22 @@
 //
 // mcpp keeps its state in globals and cannot be stopped from outside once it runs, while a
 // macro such as `#define B A+A` nested a few dozen times expands without end in practice.
-// So it runs in a child process: the parent reads its output through pipes, stops it when
-// the output passes the size limit or the time limit, and the library's own globals never
-// live in this process. A mutex serialises the runs.
+// So it runs in a child process, forked once and kept for the next runs: the parent reads
+// its output through pipes, stops it when the output passes the size limit or the time
+// limit (the next run starts another), and the library's own globals never live in this
+// process. A mutex serialises the runs.
 #include "preprocessor.hpp"
 
 extern "C" {
 #include <mcpp_lib.h>
 }
 #include <elf.h>
+#include <fcntl.h>
 #include <link.h>
 #include <poll.h>
 #include <signal.h>
 #include <sys/mman.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -35,6 +38,7 @@ extern "C" {
 #include <cerrno>
 #include <chrono>
 #include <cstdarg>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -307,10 +311,19 @@ class Workspace {
     std::map<std::string, std::size_t> byKey_;
 };
 
-// ---- the child process ----------------------------------------------------------------
+// ---- the preprocessor's process --------------------------------------------------------
+//
+// mcpp runs in a process forked once and kept: it reads each run's arguments from a socket,
+// runs mcpp_lib_main (which resets mcpp's globals itself on entry: mcpp as a library is
+// meant to be called again) and answers how many bytes it wrote. Forking for every run
+// cost more than many a derivation: fork and exit of a 90 MB process (a Dask worker, a
+// Python with pandas) take 20-30 ms of CPU, a small sweep point 15 ms. A run stopped for
+// its size or time, or a crash, ends the process; the next run starts another.
 
-// In the child, mcpp's output and messages go straight to the pipes.
+// In the preprocessor's process: where mcpp's output and messages go, and how much of each
+// this run wrote.
 int gChildFd[2] = {-1, -1};
+std::uint64_t gChildWritten[2] = {0, 0};
 
 void writeAll(int fd, const char* p, std::size_t n) {
     while (n > 0) {
@@ -324,18 +337,20 @@ void writeAll(int fd, const char* p, std::size_t n) {
     }
 }
 
-int childFd(OUTDEST od) {
-    return od == OUT ? gChildFd[0] : gChildFd[1];
+void childWrite(OUTDEST od, const char* p, std::size_t n) {
+    const int k = od == OUT ? 0 : 1;
+    writeAll(gChildFd[k], p, n);
+    gChildWritten[k] += n;
 }
 
 extern "C" int childPutc(int c, OUTDEST od) {
     char ch = static_cast<char>(c);
-    writeAll(childFd(od), &ch, 1);
+    childWrite(od, &ch, 1);
     return c;
 }
 
 extern "C" int childPuts(const char* s, OUTDEST od) {
-    writeAll(childFd(od), s, std::strlen(s));
+    childWrite(od, s, std::strlen(s));
     return 0;
 }
 
@@ -347,15 +362,163 @@ extern "C" int childPrintf(OUTDEST od, const char* format, ...) {
     va_end(args);
     if (n < 0) return n;
     if (static_cast<std::size_t>(n) < sizeof small) {
-        writeAll(childFd(od), small, static_cast<std::size_t>(n));
+        childWrite(od, small, static_cast<std::size_t>(n));
     } else {
         std::vector<char> big(static_cast<std::size_t>(n) + 1);
         va_start(args, format);
         std::vsnprintf(big.data(), big.size(), format, args);
         va_end(args);
-        writeAll(childFd(od), big.data(), static_cast<std::size_t>(n));
+        childWrite(od, big.data(), static_cast<std::size_t>(n));
     }
     return n;
+}
+
+// Reads exactly n bytes; false at the end of the stream or on an error.
+bool readExactly(int fd, void* into, std::size_t n) {
+    auto* p = static_cast<char*>(into);
+    while (n > 0) {
+        ssize_t r = ::read(fd, p, n);
+        if (r < 0 && errno == EINTR) continue;
+        if (r <= 0) return false;
+        p += r;
+        n -= static_cast<std::size_t>(r);
+    }
+    return true;
+}
+
+bool sendAll(int fd, const void* data, std::size_t n) {
+    const auto* p = static_cast<const char*>(data);
+    while (n > 0) {
+        ssize_t w = ::send(fd, p, n, MSG_NOSIGNAL);  // a dead peer is an error, not SIGPIPE
+        if (w < 0 && errno == EINTR) continue;
+        if (w <= 0) return false;
+        p += w;
+        n -= static_cast<std::size_t>(w);
+    }
+    return true;
+}
+
+// The preprocessor's process: one run per request until the parent closes the socket.
+// A request is the argument count and each argument as its length and bytes; the answer is
+// the bytes written to the output and to the messages.
+[[noreturn]] void serveMcpp(int control) {
+    for (;;) {
+        std::uint32_t count = 0;
+        if (!readExactly(control, &count, sizeof count) || count == 0 || count > 4096)
+            ::_exit(0);
+        std::vector<std::string> args(count);
+        for (auto& a : args) {
+            std::uint32_t size = 0;
+            if (!readExactly(control, &size, sizeof size) || size > (1u << 20)) ::_exit(0);
+            a.resize(size);
+            if (!readExactly(control, a.data(), size)) ::_exit(0);
+        }
+        std::vector<char*> argv;
+        for (auto& a : args) argv.push_back(a.data());
+        argv.push_back(nullptr);
+        gChildWritten[0] = gChildWritten[1] = 0;
+        mcpp_set_out_func(childPutc, childPuts, childPrintf);
+        mcpp_lib_main(static_cast<int>(argv.size()) - 1, argv.data());
+        const std::uint64_t written[2] = {gChildWritten[0], gChildWritten[1]};
+        if (!sendAll(control, written, sizeof written)) ::_exit(0);
+    }
+}
+
+// The running preprocessor's process, guarded by gMcppMutex.
+struct McppServer {
+    pid_t pid = -1;
+    pid_t owner = -1;  // the process that started it
+    int control = -1;  // requests out, answers in
+    int out = -1;      // mcpp's output
+    int err = -1;      // mcpp's messages
+    int runs = 0;
+};
+McppServer gServer;
+
+// mcpp frees what it allocated, but a fresh process now and then bounds what it does not.
+constexpr int kRunsPerServer = 1000;
+
+void closeServerFds(McppServer& s) {
+    for (int* fd : {&s.control, &s.out, &s.err}) {
+        if (*fd >= 0) ::close(*fd);
+        *fd = -1;
+    }
+}
+
+// Ends the process (killed when `kill`, else it ends when its socket closes) and waits.
+void stopServer(McppServer& s, bool kill, int* status = nullptr) {
+    if (s.pid > 0 && kill) ::kill(s.pid, SIGKILL);
+    closeServerFds(s);
+    int st = 0;
+    if (s.pid > 0) {
+        while (::waitpid(s.pid, &st, 0) < 0 && errno == EINTR) {
+        }
+    }
+    if (status) *status = st;
+    s.pid = -1;
+}
+
+bool startServer(McppServer& s) {
+    if (s.owner != ::getpid()) {
+        // A copy of a process that had one (a fork of the host): the process is not this
+        // one's child; close the copies of its descriptors so that it still sees its
+        // parent go.
+        closeServerFds(s);
+        s.pid = -1;
+    }
+    if (s.pid > 0) return true;
+    int control[2], outPipe[2], errPipe[2];
+    if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, control) != 0) return false;
+    if (::pipe2(outPipe, O_CLOEXEC) != 0) {
+        ::close(control[0]), ::close(control[1]);
+        return false;
+    }
+    if (::pipe2(errPipe, O_CLOEXEC) != 0) {
+        ::close(control[0]), ::close(control[1]), ::close(outPipe[0]), ::close(outPipe[1]);
+        return false;
+    }
+    pid_t pid = ::fork();
+    if (pid == 0) {
+        // The process only runs mcpp: a crash there must end it, not run the handlers the
+        // host installed (a fuzzer's or a sanitizer's would report the host's input).
+        for (int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT, SIGTERM, SIGPIPE})
+            ::signal(sig, SIG_DFL);
+        // Ctrl-C reaches the whole process group: the host decides what it stops (an
+        // interpreter goes on, and so does its preprocessor); a host that ends closes the
+        // socket, and this process ends with it.
+        ::signal(SIGINT, SIG_IGN);
+        // It keeps its three descriptors (as 3, 4, 5) and /dev/null as 0-2, and none of the
+        // host's: a pipe the host writes to must reach its end when the host's does.
+        ::close(control[0]), ::close(outPipe[0]), ::close(errPipe[0]);
+        int keep[3] = {control[1], outPipe[1], errPipe[1]};
+        for (int k = 0; k < 3; ++k) {
+            int moved = ::fcntl(keep[k], F_DUPFD, 10);
+            if (moved < 0) ::_exit(4);
+            ::close(keep[k]);
+            keep[k] = moved;
+        }
+        int null = ::open("/dev/null", O_RDWR);
+        for (int fd = 0; fd < 3; ++fd)
+            if (null >= 0 && null != fd) ::dup2(null, fd);
+        for (int k = 0; k < 3; ++k)
+            if (::dup2(keep[k], 3 + k) < 0) ::_exit(4);
+        ::close_range(6, ~0u, 0);
+        gChildFd[0] = 4;
+        gChildFd[1] = 5;
+        serveMcpp(3);
+    }
+    ::close(control[1]), ::close(outPipe[1]), ::close(errPipe[1]);
+    if (pid < 0) {
+        ::close(control[0]), ::close(outPipe[0]), ::close(errPipe[0]);
+        return false;
+    }
+    s.pid = pid;
+    s.owner = ::getpid();
+    s.control = control[0];
+    s.out = outPipe[0];
+    s.err = errPipe[0];
+    s.runs = 0;
+    return true;
 }
 
 struct McppRun {
@@ -363,61 +526,62 @@ struct McppRun {
     bool tooLarge = false, tooSlow = false, failed = false;
 };
 
-McppRun runMcpp(std::vector<std::string> args, std::size_t maxOutput) {
-    McppRun run;
-    int outPipe[2], errPipe[2];
-    if (::pipe(outPipe) != 0) {
-        run.failed = true;
-        return run;
+bool sendRequest(int fd, const std::vector<std::string>& args) {
+    std::string request;
+    auto put = [&](std::uint32_t v) { request.append(reinterpret_cast<const char*>(&v), 4); };
+    put(static_cast<std::uint32_t>(args.size()));
+    for (const auto& a : args) {
+        put(static_cast<std::uint32_t>(a.size()));
+        request += a;
     }
-    if (::pipe(errPipe) != 0) {
-        ::close(outPipe[0]);
-        ::close(outPipe[1]);
-        run.failed = true;
-        return run;
-    }
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
+    return sendAll(fd, request.data(), request.size());
+}
 
-    pid_t pid = ::fork();
-    if (pid == 0) {
-        // The child only runs mcpp: a crash there must end the child, not run the handlers
-        // the host installed (a fuzzer's or a sanitizer's would report the host's input).
-        for (int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT, SIGTERM, SIGINT})
-            ::signal(sig, SIG_DFL);
-        ::close(outPipe[0]);
-        ::close(errPipe[0]);
-        gChildFd[0] = outPipe[1];
-        gChildFd[1] = errPipe[1];
-        mcpp_set_out_func(childPutc, childPuts, childPrintf);
-        mcpp_lib_main(static_cast<int>(argv.size()) - 1, argv.data());
-        ::_exit(0);
+// Runs mcpp with `args` in the preprocessor's process (started when there is none), keeping
+// at most maxOutput bytes of its output; stops it past that size or the time limit.
+// The caller holds gMcppMutex.
+McppRun runMcpp(const std::vector<std::string>& args, std::size_t maxOutput) {
+    McppRun run;
+    McppServer& s = gServer;
+    if (s.pid > 0 && s.owner == ::getpid() && s.runs >= kRunsPerServer) stopServer(s, false);
+    if (!startServer(s) || !sendRequest(s.control, args)) {
+        // A process that died since its last run: one more try with a new one.
+        if (s.pid > 0) stopServer(s, true);
+        if (!startServer(s) || !sendRequest(s.control, args)) {
+            if (s.pid > 0) stopServer(s, true);
+            run.failed = true;
+            return run;
+        }
     }
-    ::close(outPipe[1]);
-    ::close(errPipe[1]);
-    if (pid < 0) {
-        ::close(outPipe[0]);
-        ::close(errPipe[0]);
-        run.failed = true;
-        return run;
-    }
+    ++s.runs;
 
     auto deadline = std::chrono::steady_clock::now() + kTimeLimit;
-    pollfd fds[2] = {{outPipe[0], POLLIN, 0}, {errPipe[0], POLLIN, 0}};
-    bool open[2] = {true, true};
+    pollfd fds[3] = {{s.out, POLLIN, 0}, {s.err, POLLIN, 0}, {s.control, POLLIN, 0}};
+    bool open[3] = {true, true, true};
+    std::uint64_t received[2] = {0, 0};
+    std::uint64_t answer[2] = {0, 0};
+    bool answered = false;
     char buffer[65536];
-    bool stopped = false;
-    while (open[0] || open[1]) {
+    // Until the answer has come and its bytes are read, or the process is gone.
+    auto finished = [&] {
+        if (answered) return received[0] >= answer[0] && received[1] >= answer[1];
+        return !open[0] && !open[1] && !open[2];
+    };
+    while (!finished()) {
         auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
             deadline - std::chrono::steady_clock::now());
         if (left.count() <= 0) {
             run.tooSlow = true;
             break;
         }
-        for (int k = 0; k < 2; ++k) fds[k].fd = open[k] ? (k == 0 ? outPipe[0] : errPipe[0]) : -1;
-        int ready = ::poll(fds, 2, static_cast<int>(std::min<long long>(left.count(), 1000)));
-        if (ready < 0 && errno != EINTR) break;
+        for (int k = 0; k < 3; ++k)
+            fds[k].fd = open[k] ? (k == 0 ? s.out : k == 1 ? s.err : s.control) : -1;
+        int ready = ::poll(fds, 3, static_cast<int>(std::min<long long>(left.count(), 1000)));
+        if (ready < 0 && errno != EINTR) {
+            run.failed = true;
+            break;
+        }
+        if (ready < 0) continue;
         for (int k = 0; k < 2; ++k) {
             if (!open[k] || !(fds[k].revents & (POLLIN | POLLHUP | POLLERR))) continue;
             ssize_t n = ::read(fds[k].fd, buffer, sizeof buffer);
@@ -426,24 +590,29 @@ McppRun runMcpp(std::vector<std::string> args, std::size_t maxOutput) {
                 open[k] = false;
                 continue;
             }
+            received[k] += static_cast<std::uint64_t>(n);
             std::string& sink = k == 0 ? run.output : run.messages;
             std::size_t limit = k == 0 ? maxOutput : kMaxMessageBytes;
             std::size_t room = sink.size() < limit ? limit - sink.size() : 0;
             sink.append(buffer, std::min(room, static_cast<std::size_t>(n)));
             if (k == 0 && static_cast<std::size_t>(n) > room) run.tooLarge = true;
         }
+        if (open[2] && (fds[2].revents & (POLLIN | POLLHUP | POLLERR))) {
+            if (readExactly(s.control, answer, sizeof answer))
+                answered = true;
+            else
+                open[2] = false;  // the process ended (mcpp exited or crashed)
+        }
         if (run.tooLarge) break;
     }
-    if (run.tooLarge || run.tooSlow) {
-        ::kill(pid, SIGKILL);
-        stopped = true;
+    if (run.tooLarge || run.tooSlow || run.failed) {
+        stopServer(s, true);
+    } else if (!answered) {
+        // mcpp ended its process: as before, only a clean exit is no failure.
+        int status = 0;
+        stopServer(s, false, &status);
+        if (!(WIFEXITED(status) && WEXITSTATUS(status) == 0)) run.failed = true;
     }
-    ::close(outPipe[0]);
-    ::close(errPipe[0]);
-    int status = 0;
-    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-    }
-    if (!stopped && !(WIFEXITED(status) && WEXITSTATUS(status) == 0)) run.failed = true;
     return run;
 }
 
@@ -656,7 +825,7 @@ bool preprocessSource(std::string_view text, const PreprocessOptions& options, S
         std::lock_guard<std::mutex> lock(gMcppMutex);
         static std::once_flag shield;
         std::call_once(shield, [] { ::dl_iterate_phdr(shieldMcppCompare, nullptr); });
-        run = runMcpp(std::move(args), limit);
+        run = runMcpp(args, limit);
     }
     readMessages(run.messages, ws, mainName, diags);
 

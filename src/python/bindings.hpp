@@ -164,6 +164,10 @@ auto interruptible(CancellationToken cancel, F&& work) -> decltype(work()) {
     if constexpr (!std::is_void_v<Result>) return std::move(*result);
 }
 
+// defines= as the library's overrides: names to text ({'N': 3} is N=3); a TypeError for
+// anything but str names and number or str values.
+std::map<std::string, std::string> defineMap(const py::object& defines);
+
 // The keywords that derive the same string again (export(**keywords) draws it).
 py::dict deriveKeywords(const DeriveSettings& settings, int steps);
 
@@ -183,10 +187,22 @@ py::object loadMapModel(ModelSource source);
 // The Python environment object as the library's Environment (environment_binding.cpp).
 std::shared_ptr<Environment> pythonEnvironment(py::object environment);
 
+// Callables called by their own names in a model's expressions (light(x)): each name of
+// `functions` that the model's text calls and does not #define becomes a function-like
+// macro `light(x)` -> `func(id, x)` with an id of its own, given to the preprocessor with
+// the overrides (functions_binding.cpp).
+struct NamedFunctions {
+    std::map<std::string, std::string> macros;  // "light(x)" -> "func(1001,x)"
+    std::map<std::string, int> ids;             // "light" -> 1001
+};
+NamedFunctions namedFunctions(const ModelSource& source);
+
 // Python callables as the model's functions for func(id, x) (functions_binding.cpp): the
-// keys are func()'s ids or names the model gives them; None: no table.
+// keys are func()'s ids, names the model gives them, or names it calls (`named`); None: no
+// table.
 std::shared_ptr<const std::vector<UserFunction>> userFunctionTable(const Model& model,
-                                                                   const py::object& functions);
+                                                                   const py::object& functions,
+                                                                   const NamedFunctions& named);
 // A Python object that any thread may hold: the last owner releases it with the GIL.
 std::shared_ptr<py::object> heldForThreads(py::object object);
 // The exception a Python callable raised while the library ran (the GIL held): the

@@ -2,6 +2,10 @@
 // MapModel for a file that starts `map L-system:`, as the command does. It is derived by the
 // pipeline's derivedMap() (a graftal.Map: the cells as `graftal derive` prints them, counts
 // and vertex positions) and drawn by the export registry's exportMap(), as `graftal render`.
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <iterator>
 #include <sstream>
 
 #include "bindings.hpp"
@@ -27,7 +31,52 @@ struct MapResult {
     bool relaxed = false;
 };
 
+// The names a map L-system's text defines (`#define NAME ...` lines): a map has no table of
+// constants to ask, and an override of a name it does not define would change nothing.
+std::vector<std::string> definedNames(const ModelSource& source) {
+    std::string text = source.text;
+    if (!source.path.empty()) {
+        std::ifstream in(source.path, std::ios::binary);
+        text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+    std::vector<std::string> names;
+    std::istringstream lines(text);
+    std::string line;
+    auto blank = [](char c) { return c == ' ' || c == '\t'; };
+    auto word = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+    while (std::getline(lines, line)) {
+        std::size_t i = 0;
+        while (i < line.size() && blank(line[i])) ++i;
+        if (i >= line.size() || line[i] != '#') continue;
+        ++i;
+        while (i < line.size() && blank(line[i])) ++i;
+        if (line.compare(i, 6, "define") != 0) continue;
+        i += 6;
+        std::size_t start = i;
+        while (i < line.size() && blank(line[i])) ++i;
+        if (i == start) continue;
+        start = i;
+        while (i < line.size() && word(line[i])) ++i;
+        if (i > start) names.push_back(line.substr(start, i - start));
+    }
+    return names;
+}
+
+void checkMapDefines(const ModelSource& source) {
+    if (source.defines.empty()) return;
+    const std::vector<std::string> names = definedNames(source);
+    for (const auto& [name, value] : source.defines) {
+        if (std::find(names.begin(), names.end(), name) != names.end()) continue;
+        std::string known;
+        for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
+        throw py::value_error(
+            "defines: the map L-system has no #define " + name +
+            (known.empty() ? std::string(" (it defines none)") : " (it defines " + known + ")"));
+    }
+}
+
 MapHandle readMap(ModelSource source) {
+    checkMapDefines(source);
     ParseOptions options;
     options.defines = source.defines;
     MapParseResult parsed;
@@ -259,6 +308,17 @@ void bindMaps(py::module_& m) {
              "('none', 'age', 'sides', 'labels'); uniform_width draws every wall equally "
              "wide; the picture options of Model.export (size, line_width, margin, "
              "background, line_color, spline) apply.")
+        .def(
+            "with_defines",
+            [](const MapHandle& h, py::object defines) {
+                ModelSource source = *h.source;
+                for (auto& [name, value] : defineMap(defines)) source.defines[name] = value;
+                return readMap(std::move(source));
+            },
+            py::arg("defines"),
+            "The same map L-system read again with these #define constants overridden too "
+            "({'L': 3}); the overrides it was read with stay unless named again. A name the "
+            "text does not #define is a ValueError.")
         .def(py::pickle(&mapState, &mapFromState))
         .def("__repr__", [](const MapHandle& h) {
             return "<graftal.MapModel '" + h.system->file +

@@ -11,8 +11,6 @@
 
 namespace graftal::python {
 
-namespace {
-
 std::map<std::string, std::string> defineMap(const py::object& defines) {
     std::map<std::string, std::string> map;
     if (defines.is_none()) return map;
@@ -30,14 +28,19 @@ std::map<std::string, std::string> defineMap(const py::object& defines) {
     return map;
 }
 
+namespace {
+
 std::string pathText(const py::object& path) {
     return py::str(py::module_::import("os").attr("fspath")(path)).cast<std::string>();
 }
 
-// Reads the model a source describes, with `defines` as the overrides.
-ParseResult read(const ModelSource& source, const std::map<std::string, std::string>& defines) {
+// Reads the model a source describes, with `defines` as the overrides and the macros of the
+// functions it calls by name.
+ParseResult read(const ModelSource& source, const std::map<std::string, std::string>& defines,
+                 const NamedFunctions& named) {
     ParseOptions options;
     options.defines = defines;
+    options.defines.insert(named.macros.begin(), named.macros.end());
     if (!source.path.empty()) {
         if (source.view) options.viewFile = *source.view;
         return loadModel(source.path, options);
@@ -52,13 +55,14 @@ ParseResult read(const ModelSource& source, const std::map<std::string, std::str
 // see (the command takes it silently): from Python it is an error naming the constants
 // there are. The model is read once more without the overrides to learn them.
 // `known`: the constants, when the caller knows them (a model read before).
-void checkDefines(const ModelSource& source, const std::map<std::string, std::string>* known) {
+void checkDefines(const ModelSource& source, const std::map<std::string, std::string>* known,
+                  const NamedFunctions& named) {
     if (source.defines.empty()) return;
     ParseResult parsed;
     if (!known) {
         {
             py::gil_scoped_release release;
-            parsed = read(source, {});
+            parsed = read(source, {}, named);
         }
         if (!parsed.ok()) raiseParseError(parsed.errors());
         known = &parsed.model.lsystem.defines;
@@ -75,16 +79,20 @@ void checkDefines(const ModelSource& source, const std::map<std::string, std::st
 
 ModelHandle handleOf(ModelSource source,
                      const std::map<std::string, std::string>* known = nullptr) {
-    checkDefines(source, known);
+    const NamedFunctions named = namedFunctions(source);
+    checkDefines(source, known, named);
     ParseResult parsed;
     {
         py::gil_scoped_release release;
-        parsed = read(source, source.defines);
+        parsed = read(source, source.defines, named);
     }
     if (!parsed.ok()) raiseParseError(parsed.errors());
+    // The macros are the module's means, not the model's constants.
+    for (const auto& [macro, body] : named.macros) parsed.model.lsystem.defines.erase(macro);
     if (source.random) parsed.model.lsystem.random = *source.random;
     if (source.functions)
-        parsed.model.lsystem.userFunctions = userFunctionTable(parsed.model, *source.functions);
+        parsed.model.lsystem.userFunctions =
+            userFunctionTable(parsed.model, *source.functions, named);
     ModelHandle h;
     h.warnings = parsed.warnings();
     h.model = std::make_shared<const Model>(std::move(parsed.model));
@@ -379,8 +387,9 @@ void bindModel(py::module_& m) {
           "view file). defines overrides #define constants ({'N': 4}, as -D N=4); view names "
           "a cpfg view file read after it. functions gives Python callables f(x) -> float "
           "for func(id, x): keyed by the id, or by a name the model gives one (a #define "
-          "such as LIGHT whose value is the id, or an item of the view file's function set); "
-          "they are called during every derivation. random ('graftal' or 'cpfg') chooses "
+          "such as LIGHT whose value is the id, or an item of the view file's function set), "
+          "or by a name its expressions call (light(x)); they are called during every "
+          "derivation. random ('graftal' or 'cpfg') chooses "
           "whose random numbers its derivations draw, as `random:` in the file (a model "
           "read with a view file draws cpfg's unless it says otherwise). Raises "
           "graftal.ParseError when it does not parse; its warnings are in Model.warnings. A "

@@ -86,3 +86,24 @@ def test_bad_callables_and_answers_are_python_errors():
     infinite = graftal.parse(GROWING, file="grow.l", functions={"LIGHT": lambda x: float("inf")})
     with pytest.raises(graftal.Error, match="func\\(1, 0\\) gave .*, not a finite number"):
         infinite.derive()
+
+
+def test_a_callable_called_by_its_name_in_expressions():
+    # As L-Py's models call Python functions: light(t) in the model, {"light": f} here.
+    text = ("#define K 2\nLsystem: 1\nderivation length: 3\naxiom: A(0)\n"
+            "A(t) : * --> F(light(t) * K) A(t + 1)\nendlsystem\n")
+    model = graftal.parse(text, file="named.l", functions={"light": light})
+    assert str(model.derive()) == "F(2)F(6)F(10)A(3)"
+    assert model.defines == {"K": "2"}  # the name is no constant of the model
+    assert str(model.with_defines({"K": 1}).derive(2)) == "F(1)F(3)A(2)"
+    assert str(pickle.loads(pickle.dumps(model)).derive(1)) == "F(2)A(1)"
+    with pytest.raises(graftal.ParseError, match="named.l:5:16: error: unknown function 'light'"):
+        graftal.parse(text, file="named.l")
+    with pytest.raises(ValueError, match="knows no function 'dark'.* call as dark\\(x\\)"):
+        graftal.parse(text, file="named.l", functions={"light": light, "dark": light})
+
+    def fails(x):
+        raise ArithmeticError("no light here")
+
+    with pytest.raises(graftal.Error, match="the Python function light raised ArithmeticError"):
+        graftal.parse(text, file="named.l", functions={"light": fails}).derive()

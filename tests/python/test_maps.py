@@ -65,3 +65,43 @@ def test_bad_map_requests_are_python_errors(root):
         graftal.load(root / SQUARE, view=root / "examples" / "cpfg-generalized-cylinder.v")
     with pytest.raises(graftal.ParseError):
         graftal.parse("map L-system: 1\naxiom: ab\nendlsystem\n", file="bad.l")
+
+
+def square_with_length(root):
+    """The square map with its derivation length a #define."""
+    text = (root / SQUARE).read_text().replace("derivation length: 4",
+                                               "#define LENGTH 2\nderivation length: LENGTH")
+    return graftal.parse(text, file="square.l")
+
+
+def test_map_with_defines(root):
+    model = square_with_length(root)
+    assert model.derivation_length == 2 and model.derive().cells == 4
+    longer = model.with_defines({"LENGTH": 3})
+    assert isinstance(longer, graftal.MapModel)
+    assert (longer.derivation_length, longer.overrides) == (3, {"LENGTH": "3"})
+    assert longer.derive().cells == 8
+    assert pickle.loads(pickle.dumps(longer)).derivation_length == 3
+    with pytest.raises(ValueError, match="no #define WIDTH .it defines LENGTH"):
+        model.with_defines({"WIDTH": 2})
+    with pytest.raises(ValueError, match="no #define LENGTH .it defines none"):
+        graftal.load(root / SQUARE, defines={"LENGTH": 2})
+
+
+def test_a_sweep_over_a_map(root, cli):
+    model = square_with_length(root)
+    frame = graftal.sweep(model, {"LENGTH": [1, 2, 3]}, export="svg", size=64)
+    assert frame["LENGTH"].tolist() == [1, 2, 3]
+    assert frame["cells"].tolist() == [2, 4, 8]
+    stats = json.loads(cli("stats", SQUARE, "-n", 3))
+    row = frame.iloc[2]
+    assert (row["edges"], row["vertices"]) == (stats["edges"], stats["vertices"])
+    assert row["svg"] == model.export(format="svg", steps=3, size=(64, 64))
+    with pytest.raises(ValueError, match="draws no random numbers"):
+        graftal.sweep(model, {"seed": [1, 2]})
+
+
+def test_show_draws_a_map_flat(root):
+    viewer = graftal.show(graftal.load(root / LAYER), steps=3)
+    assert viewer.glb is None and viewer.svg.startswith(b"<?xml")
+    assert "data:image/svg+xml;base64," in viewer._repr_html_()

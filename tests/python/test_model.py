@@ -166,3 +166,19 @@ def test_other_threads_run_while_the_library_works(root):
         thread.join()
     assert len(s) == koch.predict(7)["modules"][-1]
     assert ticks[0] - before > 10000  # the GIL was free while it derived
+
+
+def test_import_is_light(root):
+    """`import graftal` loads neither NumPy nor pandas nor Dask: a short script pays for
+    what it uses (NumPy comes with the first array)."""
+    import os
+    import subprocess
+    import sys
+    script = ("import sys, graftal\n"
+              "heavy = ('numpy', 'pandas', 'distributed', 'dask')\n"
+              "print(sorted(m for m in heavy if m in sys.modules))\n"
+              "s = graftal.load(sys.argv[1]).derive(2)\n"
+              "print(s.symbols.dtype, 'numpy' in sys.modules, callable(graftal.sweep))\n")
+    done = subprocess.run([sys.executable, "-c", script, str(root / KOCH)], env=os.environ,
+                          capture_output=True, text=True, check=True)
+    assert done.stdout.splitlines() == ["[]", "uint8 True True"]

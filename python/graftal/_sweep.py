@@ -16,6 +16,9 @@ from . import _graftal
 #: The statistics columns every row has, after the point's own values.
 COLUMNS = ["steps", "modules", "segments", "polygons", "min_x", "min_y", "min_z", "max_x",
            "max_y", "max_z", "seconds"]
+#: A map L-system's columns (graftal.MapModel.statistics()).
+MAP_COLUMNS = ["steps", "cells", "edges", "vertices", "min_x", "min_y", "min_z", "max_x",
+               "max_y", "max_z", "seconds"]
 
 
 def grid_points(grid):
@@ -45,15 +48,42 @@ def mesh_arrays(mesh):
             "triangle_rgb": mesh.palette[mesh.triangle_colors % max(len(mesh.palette), 1)]}
 
 
+def _map_row(model, point, steps, export, size, threads, meshes):
+    """A map L-system's row: what `graftal stats` counts of the map, and its picture."""
+    if "seed" in point:
+        raise ValueError("sweep: a map L-system draws no random numbers: 'seed' does not apply")
+    if meshes:
+        raise ValueError("sweep: a map L-system is drawn flat: meshes=True does not apply")
+    stats = model.statistics(steps, threads=threads)
+    row = dict(point)
+    for name in ("steps", "cells", "edges", "vertices"):
+        row[name] = stats[name]
+    for axis, (lo, hi) in zip("xyz", zip(*stats["bounds"])):
+        row["min_" + axis] = lo
+        row["max_" + axis] = hi
+    row["cell_sides"] = stats["cell_sides"]
+    if export:
+        options = {"format": export, "steps": steps, "threads": threads}
+        if export in ("png", "svg", "pdf"):
+            options["size"] = (size, size)
+        row[export] = model.export(**options)
+    return row
+
+
 def run_point(model, point, steps=None, geometry=True, export=None, size=256, threads=1,
-              memory_limit=None, meshes=False, tube_sides=8):
+              memory_limit=None, meshes=False, tube_sides=8, _read=None):
     """One point of a sweep: the model read with the point's constants, derived with its
-    seed, and measured (and exported when `export` names a format). Returns the row."""
+    seed, and measured (and exported when `export` names a format). Returns the row.
+    A map L-system (graftal.MapModel) gives its cells, edges and vertices instead."""
     point = {k: _plain(v) for k, v in point.items()}
     defines = {k: v for k, v in point.items() if k != "seed"}
     seed = point.get("seed")
     start = time.perf_counter()
-    m = model.with_defines(defines) if defines else model
+    m = (_read or _with_defines)(model, defines)
+    if isinstance(m, _graftal.MapModel):
+        row = _map_row(m, point, steps, export, size, threads, meshes)
+        row["seconds"] = time.perf_counter() - start
+        return row
     stats = m.statistics(steps, seed=seed, threads=threads, memory_limit=memory_limit,
                          geometry=geometry)
     row = dict(point)
@@ -78,18 +108,36 @@ def run_point(model, point, steps=None, geometry=True, export=None, size=256, th
     return row
 
 
+def _with_defines(model, defines):
+    return model.with_defines(defines) if defines else model
+
+
 def run_points(model, points, **options):
     """Several points of a sweep in one task (run_point for each): a derivation of a few
-    tens of milliseconds is shorter than what Dask spends on a task."""
-    return [run_point(model, p, **options) for p in points]
+    tens of milliseconds is shorter than what Dask spends on a task. Points with the same
+    constants (seeds of one plant) read the model once."""
+    read = {}
+
+    def with_defines(model, defines):
+        key = tuple(sorted((k, repr(v)) for k, v in defines.items()))
+        if key not in read:
+            if len(read) >= 64:  # a long serial sweep keeps a few models, not every one
+                read.clear()
+            read[key] = _with_defines(model, defines)
+        return read[key]
+
+    return [run_point(model, p, _read=with_defines, **options) for p in points]
 
 
 def _batches(points, client):
-    """The points in consecutive batches of at most 16, about four per worker thread so
-    that the workers stay balanced (one point a batch when there are few)."""
+    """The points in consecutive batches, as even as can be: about four per worker thread
+    (at most 16 points each, one when there are few), their number a multiple of the
+    threads so that the workers end together."""
     threads = sum(client.nthreads().values()) or 1
-    size = max(1, min(16, len(points) // (4 * threads)))
-    return [points[i:i + size] for i in range(0, len(points), size)]
+    count = max(1, len(points) // 16 + (len(points) % 16 > 0), min(len(points), 4 * threads))
+    count = min(len(points), -(-count // threads) * threads) if points else 0
+    bounds = [len(points) * k // count for k in range(count + 1)] if count else [0]
+    return [points[a:b] for a, b in zip(bounds, bounds[1:])]
 
 
 def sweep(model, grid, client=None, *, steps=None, geometry=True, export=None, size=256,
@@ -111,13 +159,13 @@ def sweep(model, grid, client=None, *, steps=None, geometry=True, export=None, s
     """
     import pandas
 
-    if not isinstance(model, _graftal.Model):
+    if not isinstance(model, (_graftal.Model, _graftal.MapModel)):
         model = _graftal.load(model)
     points = grid_points(grid)
     options = dict(steps=steps, geometry=geometry, export=export, size=size, threads=threads,
                    memory_limit=memory_limit, meshes=meshes, tube_sides=tube_sides)
     if client is None:
-        rows = [run_point(model, p, **options) for p in points]
+        rows = run_points(model, points, **options)
     else:
         # The model is sent once; every task refers to it. Each task derives a batch of
         # consecutive points, in grid order.
@@ -127,8 +175,9 @@ def sweep(model, grid, client=None, *, steps=None, geometry=True, export=None, s
         rows = [row for batch in client.gather(futures) for row in batch]
     frame = pandas.DataFrame(rows)
     names = list(points[0]) if points else []
-    extra = [c for c in frame.columns if c not in names and c not in COLUMNS]
-    return frame[names + [c for c in COLUMNS if c in frame.columns] + extra]
+    columns = MAP_COLUMNS if isinstance(model, _graftal.MapModel) else COLUMNS
+    extra = [c for c in frame.columns if c not in names and c not in columns]
+    return frame[names + [c for c in columns if c in frame.columns] + extra]
 
 
 __all__ = ["sweep", "grid_points", "run_point", "run_points", "mesh_arrays"]
