@@ -27,15 +27,22 @@ const html = fs.readFileSync(path.join(sourceDir, 'studio', 'index.html'), 'utf8
   // in the same time (engine_worker.js takes both over).
   .replace('</title>', `</title>
 <script>
-window.graftalBoot = { worker: new Worker('worker.js', { type: 'module' }),
+// The .wasm is compiled here, while it downloads, and handed to the worker (and to every
+// worker after it): the compilation does not wait for the worker's script.
+const compiled = WebAssembly.compileStreaming(fetch('graftal-engine.wasm'))
+  .catch(() => fetch('graftal-engine.wasm').then((r) => r.arrayBuffer()).then((b) => WebAssembly.compile(b)))
+  .catch(() => null);
+const bootWorker = new Worker('worker.js', { type: 'module', name: 'graftal:wasm-posted' });
+compiled.then((module) => bootWorker.postMessage({ op: 'wasm', module }));
+window.graftalBoot = { worker: bootWorker, wasm: compiled,
   examples: fetch('examples.json').then((r) => (r.ok ? r.json() : {})).catch(() => ({})) };
 // A worker that failed before the page took it over is not taken (the page starts another
 // and hears its error).
 window.graftalBoot.worker.onerror = () => { window.graftalBoot.worker = null; };
 // The model the address opens (a shared link, or a built-in example by name) is derived
-// at once: the engine keeps the last picture, and the page's own request for it, once the
-// editor is up, is answered from it. The answer to this one is not listened to.
-(async () => {
+// at once: the engine keeps the last picture, and the page's own request for it, once its
+// script has run, is answered from it. The answer to this one is not listened to.
+window.graftalBoot.shared = (async () => {
   const hash = location.hash.slice(1);
   let text, path;
   if (hash.startsWith('model=')) {
@@ -51,7 +58,9 @@ window.graftalBoot.worker.onerror = () => { window.graftalBoot.worker = null; };
   const worker = window.graftalBoot.worker;
   if (typeof text === 'string' && worker)
     worker.postMessage({ id: 0, op: 'derive', body: { text, path, steps: null, defines: {}, have: '' } });
-})().catch(() => {});
+  // The shared link's model, which the page takes instead of decompressing it again.
+  return hash.startsWith('model=') ? { text, name: path, hash: location.hash } : null;
+})().catch(() => null);
 </script>
 <link rel="modulepreload" href="studio.js">`);
 if (!html.includes('data-engine="wasm"') || html.includes('"/studio.js"') ||

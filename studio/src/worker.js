@@ -1,6 +1,7 @@
 // The static page's Web Worker (engine_worker.js): the WebAssembly engine of the npm
 // package answers the studio's calls with the bytes the server would send. The handler is
 // set at once and waits for the engine: messages that come while it loads are not lost.
+import './wasm_from_page.js';
 import { ready, studio } from 'graftal/engine.js';
 
 // The engine derives and draws a small model as soon as it is loaded, while the page's own
@@ -18,6 +19,7 @@ const warm = ready.then(() => {
 
 onmessage = async (e) => {
   const { id, op, body } = e.data;
+  if (op === 'wasm') return;  // taken by wasm_from_page.js
   waiting += 1;
   try {
     await ready;
