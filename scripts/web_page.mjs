@@ -22,14 +22,16 @@ const html = fs.readFileSync(path.join(sourceDir, 'studio', 'index.html'), 'utf8
   .replace('<html lang="en">', '<html lang="en" data-engine="wasm">')
   .replace('href="/studio.css"', 'href="studio.css"')
   .replace('src="/studio.js"', 'src="studio.js"')
-  // The engine starts before the page's own script (1 MB with the editor and three.js)
-  // has loaded: its worker fetches and compiles the .wasm meanwhile, and the examples come
-  // in the same time (engine_worker.js takes both over).
+  // The engine starts before the page's own script has loaded: the .wasm is compiled and
+  // its worker started meanwhile, and the examples come in the same time (engine_worker.js
+  // takes them over; share_link.js takes the shared link's model, decompressed here).
   .replace('</title>', `</title>
 <script>
 // The .wasm is compiled here, while it downloads, and handed to the worker (and to every
 // worker after it): the compilation does not wait for the worker's script.
-const compiled = WebAssembly.compileStreaming(fetch('graftal-engine.wasm'))
+const compiled = (WebAssembly.compileStreaming
+  ? WebAssembly.compileStreaming(fetch('graftal-engine.wasm'))
+  : Promise.reject(new Error('no streaming compilation')))
   .catch(() => fetch('graftal-engine.wasm').then((r) => r.arrayBuffer()).then((b) => WebAssembly.compile(b)))
   .catch(() => null);
 const bootWorker = new Worker('worker.js', { type: 'module', name: 'graftal:wasm-posted' });
