@@ -174,6 +174,8 @@ add_custom_command(
   COMMAND ${CMAKE_COMMAND} -E rm -rf ${GRAFTAL_WEB_OUTPUT}/chunks
   COMMAND ${esbuild} studio=${studio_src}/src/main.js --target=es2020 --splitting
           --chunk-names=chunks/[name]-[hash] --outdir=${GRAFTAL_WEB_OUTPUT}
+  COMMAND ${GRAFTAL_NODE} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/web_page.mjs --preload
+          ${GRAFTAL_WEB_OUTPUT}
   # The worker awaits the engine at its top level (ES2022).
   # (its Node.js branch, which reads the .wasm from disk, is left to Node.js)
   COMMAND ${esbuild} ${studio_src}/src/worker.js --target=es2022 --external:node:*

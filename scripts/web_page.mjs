@@ -8,6 +8,24 @@
 import fs from 'node:fs';
 import path from 'node:path';
 
+// After esbuild (`--preload OUT_DIR`): the chunks studio.js imports statically (the code it
+// shares with the 3D view's chunk) are named in index.html, so that the browser fetches
+// them with studio.js rather than after it has parsed it. The editor's and the 3D view's
+// chunks, imported later, are not.
+if (process.argv[2] === '--preload') {
+  const dir = process.argv[3];
+  const script = fs.readFileSync(path.join(dir, 'studio.js'), 'utf8');
+  const chunks = [...new Set([...script.matchAll(/(?:from|import)\s*"\.\/(chunks\/[^"]+\.js)"/g)]
+    .map((m) => m[1]))];
+  const page = path.join(dir, 'index.html');
+  const studioLink = '<link rel="modulepreload" href="studio.js">';
+  const html = fs.readFileSync(page, 'utf8').replace(/\n<link rel="modulepreload" href="chunks\/[^"]+">/g, '');
+  if (!html.includes(studioLink)) throw new Error('index.html has no modulepreload of studio.js');
+  fs.writeFileSync(page, html.replace(studioLink, [studioLink,
+    ...chunks.map((c) => `<link rel="modulepreload" href="${c}">`)].join('\n')));
+  process.exit(0);
+}
+
 const [sourceDir, engineDir, outDir] = process.argv.slice(2);
 const pkg = path.join(outDir, 'package');
 fs.mkdirSync(pkg, { recursive: true });
