@@ -53,6 +53,8 @@ const compiled = (WebAssembly.compileStreaming
   .catch(() => fetch('graftal-engine.wasm').then((r) => r.arrayBuffer()).then((b) => WebAssembly.compile(b)))
   .catch(() => null);
 const bootWorker = new Worker('worker.js', { type: 'module', name: 'graftal:wasm-posted' });
+// The address holds a model: the worker waits for it rather than warming up first.
+if (location.hash.length > 1) bootWorker.postMessage({ op: 'expect' });
 compiled.then((module) => bootWorker.postMessage({ op: 'wasm', module }));
 window.graftalBoot = { worker: bootWorker, wasm: compiled,
   examples: fetch('examples.json').then((r) => (r.ok ? r.json() : {})).catch(() => ({})) };
