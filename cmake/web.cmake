@@ -97,7 +97,27 @@ set(GRAFTAL_NATIVE_ONLY_SOURCES
 # ones route every call that may throw through JavaScript), SIMD and bulk memory (memcpy
 # and memset as single instructions). Node.js 18+ and browsers since 2021-22 run them.
 set(GRAFTAL_WEB_FLAGS -fwasm-exceptions -O2 -msimd128 -mbulk-memory)
-add_executable(graftal_engine ${GRAFTAL_WEB_SOURCES})
+# What runs once a call (parsing the model's text, the JSON answers, the writers, the maps'
+# and the music's code) at -Os: a smaller .wasm, and a browser's optimizing compiler, which
+# recompiles a function once its loops turn hot, has smaller functions to recompile (at -O2
+# the preprocessor and the studio's picture were functions of 15-20 KB, each 0.2-0.4 s of
+# the optimizing compiler while the page's first picture is on its way). The loops that
+# carry a derivation (rewrite, turtle, geometry, the module string, expressions, the line
+# buffer, and the engine's entry points, which hand strings and arrays to JavaScript) stay at
+# -O2. The -O2 objects are linked first: a function that both kinds of object hold (the
+# standard library's templates) is taken from the first, so that the loops never call an
+# -Os copy of, say, a vector's destructor (which made releasing a string 40 times slower).
+set(GRAFTAL_WEB_HOT_SOURCES
+  src/core/module_string.cpp src/core/number_chars.cpp src/lang/expression_vm.cpp
+  src/lang/expression_builtins.cpp src/studio/line_buffer.cpp src/web/engine.cpp)
+set(GRAFTAL_WEB_COLD_SOURCES ${GRAFTAL_WEB_SOURCES})
+list(FILTER GRAFTAL_WEB_COLD_SOURCES INCLUDE REGEX
+     "^src/(core|lang|maps|music|output|pipeline|studio|web)/")
+list(REMOVE_ITEM GRAFTAL_WEB_COLD_SOURCES ${GRAFTAL_WEB_HOT_SOURCES})
+set_property(SOURCE ${GRAFTAL_WEB_COLD_SOURCES} APPEND PROPERTY COMPILE_OPTIONS -Os)
+set(GRAFTAL_WEB_LINK_ORDER ${GRAFTAL_WEB_SOURCES})
+list(REMOVE_ITEM GRAFTAL_WEB_LINK_ORDER ${GRAFTAL_WEB_COLD_SOURCES})
+add_executable(graftal_engine ${GRAFTAL_WEB_LINK_ORDER} ${GRAFTAL_WEB_COLD_SOURCES})
 target_include_directories(graftal_engine PRIVATE include src)
 target_include_directories(graftal_engine SYSTEM PRIVATE ${GRAFTAL_WEB_JSON})
 target_compile_definitions(graftal_engine PRIVATE GRAFTAL_NO_MCPP GRAFTAL_NO_MESHOPTIMIZER
@@ -154,6 +174,8 @@ add_custom_command(
   COMMAND ${CMAKE_COMMAND} -E rm -rf ${GRAFTAL_WEB_OUTPUT}/chunks
   COMMAND ${esbuild} studio=${studio_src}/src/main.js --target=es2020 --splitting
           --chunk-names=chunks/[name]-[hash] --outdir=${GRAFTAL_WEB_OUTPUT}
+  COMMAND ${GRAFTAL_NODE} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/web_page.mjs --preload
+          ${GRAFTAL_WEB_OUTPUT}
   # The worker awaits the engine at its top level (ES2022).
   # (its Node.js branch, which reads the .wasm from disk, is left to Node.js)
   COMMAND ${esbuild} ${studio_src}/src/worker.js --target=es2022 --external:node:*

@@ -8,6 +8,24 @@
 import fs from 'node:fs';
 import path from 'node:path';
 
+// After esbuild (`--preload OUT_DIR`): the chunks studio.js imports statically (the code it
+// shares with the 3D view's chunk) are named in index.html, so that the browser fetches
+// them with studio.js rather than after it has parsed it. The editor's and the 3D view's
+// chunks, imported later, are not.
+if (process.argv[2] === '--preload') {
+  const dir = process.argv[3];
+  const script = fs.readFileSync(path.join(dir, 'studio.js'), 'utf8');
+  const chunks = [...new Set([...script.matchAll(/(?:from|import)\s*"\.\/(chunks\/[^"]+\.js)"/g)]
+    .map((m) => m[1]))];
+  const page = path.join(dir, 'index.html');
+  const studioLink = '<link rel="modulepreload" href="studio.js">';
+  const html = fs.readFileSync(page, 'utf8').replace(/\n<link rel="modulepreload" href="chunks\/[^"]+">/g, '');
+  if (!html.includes(studioLink)) throw new Error('index.html has no modulepreload of studio.js');
+  fs.writeFileSync(page, html.replace(studioLink, [studioLink,
+    ...chunks.map((c) => `<link rel="modulepreload" href="${c}">`)].join('\n')));
+  process.exit(0);
+}
+
 const [sourceDir, engineDir, outDir] = process.argv.slice(2);
 const pkg = path.join(outDir, 'package');
 fs.mkdirSync(pkg, { recursive: true });
@@ -22,20 +40,31 @@ const html = fs.readFileSync(path.join(sourceDir, 'studio', 'index.html'), 'utf8
   .replace('<html lang="en">', '<html lang="en" data-engine="wasm">')
   .replace('href="/studio.css"', 'href="studio.css"')
   .replace('src="/studio.js"', 'src="studio.js"')
-  // The engine starts before the page's own script (1 MB with the editor and three.js)
-  // has loaded: its worker fetches and compiles the .wasm meanwhile, and the examples come
-  // in the same time (engine_worker.js takes both over).
+  // The engine starts before the page's own script has loaded: the .wasm is compiled and
+  // its worker started meanwhile, and the examples come in the same time (engine_worker.js
+  // takes them over; share_link.js takes the shared link's model, decompressed here).
   .replace('</title>', `</title>
 <script>
-window.graftalBoot = { worker: new Worker('worker.js', { type: 'module' }),
+// The .wasm is compiled here, while it downloads, and handed to the worker (and to every
+// worker after it): the compilation does not wait for the worker's script.
+const compiled = (WebAssembly.compileStreaming
+  ? WebAssembly.compileStreaming(fetch('graftal-engine.wasm'))
+  : Promise.reject(new Error('no streaming compilation')))
+  .catch(() => fetch('graftal-engine.wasm').then((r) => r.arrayBuffer()).then((b) => WebAssembly.compile(b)))
+  .catch(() => null);
+const bootWorker = new Worker('worker.js', { type: 'module', name: 'graftal:wasm-posted' });
+// The address holds a model: the worker waits for it rather than warming up first.
+if (location.hash.length > 1) bootWorker.postMessage({ op: 'expect' });
+compiled.then((module) => bootWorker.postMessage({ op: 'wasm', module }));
+window.graftalBoot = { worker: bootWorker, wasm: compiled,
   examples: fetch('examples.json').then((r) => (r.ok ? r.json() : {})).catch(() => ({})) };
 // A worker that failed before the page took it over is not taken (the page starts another
 // and hears its error).
 window.graftalBoot.worker.onerror = () => { window.graftalBoot.worker = null; };
 // The model the address opens (a shared link, or a built-in example by name) is derived
-// at once: the engine keeps the last picture, and the page's own request for it, once the
-// editor is up, is answered from it. The answer to this one is not listened to.
-(async () => {
+// at once: the engine keeps the last picture, and the page's own request for it, once its
+// script has run, is answered from it. The answer to this one is not listened to.
+window.graftalBoot.shared = (async () => {
   const hash = location.hash.slice(1);
   let text, path;
   if (hash.startsWith('model=')) {
@@ -51,7 +80,9 @@ window.graftalBoot.worker.onerror = () => { window.graftalBoot.worker = null; };
   const worker = window.graftalBoot.worker;
   if (typeof text === 'string' && worker)
     worker.postMessage({ id: 0, op: 'derive', body: { text, path, steps: null, defines: {}, have: '' } });
-})().catch(() => {});
+  // The shared link's model, which the page takes instead of decompressing it again.
+  return hash.startsWith('model=') ? { text, name: path, hash: location.hash } : null;
+})().catch(() => null);
 </script>
 <link rel="modulepreload" href="studio.js">`);
 if (!html.includes('data-engine="wasm"') || html.includes('"/studio.js"') ||

@@ -10,6 +10,10 @@ const wasmUrl = new URL('./graftal-engine.wasm', import.meta.url);
 const inNode = wasmUrl.protocol === 'file:' && typeof process === 'object' && process.versions?.node;
 
 async function instantiate(imports) {
+  // A module compiled already: a page's worker is handed the one its page compiled.
+  const given = await globalThis.graftalWasmModule;
+  if (given instanceof WebAssembly.Module)
+    return { instance: await WebAssembly.instantiate(given, imports), module: given };
   if (inNode) {
     const { readFile } = await import('node:fs/promises');
     return WebAssembly.instantiate(await readFile(wasmUrl), imports);

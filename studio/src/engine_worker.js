@@ -14,7 +14,7 @@ const pending = new Map();
 const boot = typeof window === 'object' && window.graftalBoot ? window.graftalBoot : {};
 
 function start() {
-  worker = boot.worker || new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
+  worker = boot.worker || newWorker();
   boot.worker = null;
   worker.onmessage = (e) => {
     const { id, ok, result, error } = e.data;
@@ -31,6 +31,16 @@ function start() {
     busy = null;
     worker = null;
   };
+}
+
+// A worker for the engine: handed the module index.html compiled, when there is one (a
+// compiled WebAssembly module is shared with workers, not compiled again).
+function newWorker() {
+  const url = new URL('./worker.js', import.meta.url);
+  if (!boot.wasm) return new Worker(url, { type: 'module' });
+  const w = new Worker(url, { type: 'module', name: 'graftal:wasm-posted' });
+  boot.wasm.then((module) => w.postMessage({ op: 'wasm', module }));
+  return w;
 }
 
 // One call of the worker; `replaces`: a derivation, which stops the one under way.

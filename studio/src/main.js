@@ -1,10 +1,7 @@
 // graftal studio's page: the editor, the views and the panels, kept in step with the
 // server. Every edit is parsed and derived at once (the server cancels the derivation it
 // replaces); the file is saved shortly after, atomically, and reloads when changed on disk.
-import { EditorView, basicSetup } from 'codemirror';
-import { setDiagnostics, lintGutter } from '@codemirror/lint';
 import * as api from './api.js';
-import { lsystemLanguage } from './lsystem_language.js';
 import { View2D } from './view2d.js';
 import { showFiles, markCurrent, refreshThumbnail, holdThumbnails } from './files_panel.js';
 import { showDefines, writeBackChanges } from './defines_panel.js';
@@ -34,17 +31,24 @@ async function view3dLoaded() {
   return view3d;
 }
 
-const editor = new EditorView({
-  doc: '',
-  extensions: [
-    basicSetup, lsystemLanguage, lintGutter(),
-    EditorView.updateListener.of((u) => { if (u.docChanged && !state.loading) edited(); }),
-  ],
-  parent: $('editor'),
-});
-studio.editor = editor;
+// The editor (editor.js, the larger part of the page's script) is built once the first
+// picture is drawn: until then the model's text is kept here, and the picture of the model
+// the page opens does not wait for the editor's script.
+let editor = null;
+let editorModule = null;
+let textBeforeEditor = '';
+const loadEditor = () => (editorModule ??= import('./editor.js'));
 
-const text = () => editor.state.doc.toString();
+async function buildEditor() {
+  const { createEditor, underline } = await loadEditor();
+  if (editor) return;
+  editor = createEditor($('editor'), textBeforeEditor, () => { if (!state.loading) edited(); });
+  editor.underline = (list) => underline(editor, list);
+  studio.editor = editor;
+  if (state.diagnostics) showDiagnostics(state.diagnostics);
+}
+
+const text = () => (editor ? editor.state.doc.toString() : textBeforeEditor);
 const modelBody = () => ({ text: text(), path: state.path, steps: state.steps, defines: state.overrides });
 
 function edited() {
@@ -74,7 +78,9 @@ const ofOtherFile = (d) => d.file && d.file !== editedName();
 
 function showDiagnostics(list) {
   const shown = list.filter((d) => d.severity !== 'note' || d.line > 0);
-  editor.dispatch(setDiagnostics(editor.state, shown.filter((d) => !ofOtherFile(d)).map(toEditorDiagnostic)));
+  // Underlined when the editor is there (it shows the last list when it is built).
+  state.diagnostics = list;
+  if (editor) editor.underline(shown.filter((d) => !ofOtherFile(d)).map(toEditorDiagnostic));
   $('problems').replaceChildren(...shown.map((d) => {
     const div = document.createElement('div');
     div.className = 'problem';
@@ -142,7 +148,8 @@ function showReport(report) {
 async function showPicture({ meta, lines, png }) {
   $('note').textContent = meta.notes.join('; ');
   state.string = meta.string;
-  showString();
+  // The string's text after the picture: laying it out is the slower part.
+  setTimeout(() => { if (state.string === meta.string) showString(); }, 0);
   showStats(meta);
   const fit = state.fitNext;
   state.fitNext = false;
@@ -253,6 +260,7 @@ $('play').addEventListener('click', async () => {
 // ---- #define write back ------------------------------------------------------------
 
 function writeBack() {
+  if (!editor) return;
   const changes = writeBackChanges(editor.state.doc, state.defines, state.overrides);
   state.overrides = {};
   if (changes.length) editor.dispatch({ changes });  // edited() saves and refreshes
@@ -286,6 +294,7 @@ async function saveNow() {
 }
 
 function setText(t) {
+  if (!editor) { textBeforeEditor = t; return; }
   state.loading = true;
   editor.dispatch({ changes: { from: 0, to: editor.state.doc.length, insert: t } });
   state.loading = false;
@@ -431,19 +440,28 @@ async function start() {
   const [meta, list] = await Promise.all([api.info(), api.listFiles()]);
   exportMenu(meta.formats || []);
   showFiles(list.files, openFile, !api.staticPage);
+  let opened = null;
   if (api.staticPage) {
     staticControls();
     const shared = await sharedModel().catch(() => null);
     if (shared) {
       await api.writeFile(shared.name, shared.text);
-      await openFile(shared.name, { text: shared.text, mtime: 0 });
-      document.body.dataset.ready = 'true';
-      return;
+      opened = openFile(shared.name, { text: shared.text, mtime: 0 });
     }
   }
-  const wanted = decodeURIComponent(location.hash.slice(1));
-  const first = list.files.find((f) => f.path === wanted) || list.files.find((f) => f.path === meta.onlyFile) || list.files[0];
-  if (first) await openFile(first.path);
-  document.body.dataset.ready = 'true';
+  if (!opened) {
+    const wanted = decodeURIComponent(location.hash.slice(1));
+    const first = list.files.find((f) => f.path === wanted) || list.files.find((f) => f.path === meta.onlyFile) || list.files[0];
+    if (first) opened = openFile(first.path);
+  }
+  // The editor after the first picture, and after the frame that shows it: its script is
+  // most of the page's, and the picture of the model opened should not wait for it.
+  try {
+    await opened;
+  } finally {
+    await new Promise((shown) => requestAnimationFrame(() => setTimeout(shown, 0)));
+    await buildEditor();
+    document.body.dataset.ready = 'true';
+  }
 }
 start();

@@ -31,6 +31,9 @@ export async function shareLink(text, name) {
 
 // {text, name} of a shared link's fragment, or null when the address shares nothing.
 export async function sharedModel(hash = location.hash) {
+  // The static page's index.html has decompressed the address's model already.
+  const early = await globalThis.graftalBoot?.shared;
+  if (early && early.hash === hash) return { text: early.text, name: early.name };
   const fragment = hash.replace(/^#/, '');
   if (!fragment.startsWith(prefix)) return null;
   const [data, ...rest] = fragment.slice(prefix.length).split('&');
