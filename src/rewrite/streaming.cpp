@@ -6,6 +6,7 @@
 #include "graftal/rewrite/streaming.hpp"
 
 #include "graftal/core/parallel.hpp"
+#include "graftal/rewrite/parallel_stream.hpp"
 #include "rewriting_engine.hpp"
 
 namespace graftal {
@@ -41,6 +42,25 @@ void streamDerivation(const LSystem& ls, int steps, ModuleSink& sink,
     if (std::string why = streamingObstacle(ls); !why.empty())
         throw Error(SourceLocation{ls.file, 0, 0}, "this L-system cannot be streamed: " + why);
     if (steps < 0) steps = ls.derivationLength;
+    // Without random numbers no module needs its position: workers derive chunks of the
+    // string and this thread hands their modules to the sink, in order.
+    const unsigned threads = options.threads == 0 ? defaultThreadCount() : options.threads;
+    if (threads > 1 && streamsInParallel(ls)) {
+        std::vector<double> scratch;
+        streamDerivationParallel(
+            ls, steps, nullptr,
+            [&](const StreamBlock& block) {
+                const ModuleString& m = block.modules;
+                if (!m.hasParameters()) {
+                    for (Symbol s : m.symbols()) sink.module(s, {});
+                    return;
+                }
+                for (std::size_t i = 0; i < m.size(); ++i)
+                    sink.module(m.symbol(i), m.params(i).doubles(scratch));
+            },
+            options);
+        return;
+    }
     RewritingEngine engine(ls, ls.productions, options.seed.value_or(ls.seed), 1);
     bool random = false;
     for (const auto& p : ls.productions) {
