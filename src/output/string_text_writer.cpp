@@ -89,6 +89,37 @@ void writeStringText(const ModuleString& string, const SymbolTable& symbols, std
     out.put('\n');
 }
 
+struct StringTextFormatter::State {
+    explicit State(const SymbolTable& symbols) : names(symbols) {}
+    SymbolNames names;
+    NumberCache cache;
+    TextBuffer buffer;
+};
+
+StringTextFormatter::StringTextFormatter(const SymbolTable& symbols)
+    : state_(std::make_unique<State>(symbols)) {}
+
+StringTextFormatter::~StringTextFormatter() = default;
+
+void StringTextFormatter::append(const ModuleString& string, std::string& out) {
+    State& st = *state_;
+    const std::span<const Symbol> all = string.symbols();
+    if (!string.hasParameters() && SymbolNames::isOwnText(all)) {
+        out.append(reinterpret_cast<const char*>(all.data()), all.size());
+        return;
+    }
+    st.buffer.clear();
+    if (!string.hasParameters())
+        formatNames(all, st.names, st.buffer);
+    else if (string.precision() == Precision::Single)
+        formatParametric(string, string.floatParams().data(), st.names, 0, all.size(), st.buffer,
+                         st.cache);
+    else
+        formatParametric(string, string.doubleParams().data(), st.names, 0, all.size(),
+                         st.buffer, st.cache);
+    out.append(st.buffer.data(), st.buffer.size());
+}
+
 struct StringTextStream::State {
     State(const SymbolTable& symbols, Precision p, std::ostream& o)
         : names(symbols), precision(p), out(o), buffer(kStreamPiece + (1 << 16)) {}

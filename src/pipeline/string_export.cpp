@@ -4,7 +4,10 @@
 // speed), module by module when the prediction says the string would not fit.
 #include "string_export.hpp"
 
-#include <streambuf>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <thread>
 
 #include "graftal/output/string_json_writer.hpp"
 #include "graftal/output/string_text_writer.hpp"
@@ -16,39 +19,23 @@ namespace graftal {
 
 namespace {
 
-// An ostream's bytes appended to a string: a worker formats its block with the held
-// string's writer, so streamed and held text are the same bytes.
-class AppendingBuffer : public std::streambuf {
-  public:
-    explicit AppendingBuffer(std::string& text) : text_(text) {}
-
-  protected:
-    int_type overflow(int_type c) override {
-        if (!traits_type::eq_int_type(c, traits_type::eof()))
-            text_.push_back(traits_type::to_char_type(c));
-        return c;
-    }
-    std::streamsize xsputn(const char* p, std::streamsize n) override {
-        text_.append(p, static_cast<std::size_t>(n));
-        return n;
-    }
-
-  private:
-    std::string& text_;
-};
-
-// The text of the string streamed in parallel: each worker formats its blocks, this
-// thread writes them in order.
+// The text of the string streamed in parallel: each worker formats its blocks (with the
+// held string's formatting), this thread writes them in order.
 void streamTextInParallel(const Model& model, int steps, const DerivationOptions& options,
                           std::ostream& out) {
-    const SymbolTable& symbols = model.lsystem.symbols;
+    // One formatter a worker, each keeping the texts of the numbers it has met.
+    std::mutex mutex;
+    std::map<std::thread::id, std::unique_ptr<StringTextFormatter>> formatters;
+    auto formatter = [&]() -> StringTextFormatter& {
+        std::lock_guard lock(mutex);
+        auto& f = formatters[std::this_thread::get_id()];
+        if (!f) f = std::make_unique<StringTextFormatter>(model.lsystem.symbols);
+        return *f;
+    };
     streamDerivationParallel(
         model.lsystem, steps,
         [&](StreamBlock& block) {
-            AppendingBuffer buffer(block.text);
-            std::ostream text(&buffer);
-            writeStringText(block.modules, symbols, text, 1);
-            block.text.pop_back();  // the newline that ends a whole string
+            formatter().append(block.modules, block.text);
             block.modules.clear();
         },
         [&](const StreamBlock& block) {

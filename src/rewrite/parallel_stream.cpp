@@ -42,6 +42,42 @@ unsigned threadCount(const DerivationOptions& options) {
 // Below this many modules a held derivation is over in a few milliseconds.
 constexpr double kParallelStreamModules = 1 << 20;
 
+// ModuleString::push() where the walk spends its time: the same layout (offsets only once
+// some module has parameters), inlined.
+template <class T>
+inline void appendModule(ModuleString& out, Symbol s, const T* args, std::size_t n) {
+    auto& symbols = out.rawSymbols();
+    auto& starts = out.rawParamStart();
+    if (n == 0) {
+        symbols.push_back(s);
+        if (!starts.empty()) starts.push_back(static_cast<std::uint32_t>(out.paramCount()));
+        return;
+    }
+    if (starts.empty()) starts.assign(symbols.size() + 1, 0);
+    symbols.push_back(s);
+    if (out.precision() == Precision::Single) {
+        auto& values = out.rawFloats();
+        for (std::size_t k = 0; k < n; ++k) values.push_back(static_cast<float>(args[k]));
+        starts.push_back(static_cast<std::uint32_t>(values.size()));
+    } else {
+        auto& values = out.rawParams();
+        for (std::size_t k = 0; k < n; ++k) values.push_back(static_cast<double>(args[k]));
+        starts.push_back(static_cast<std::uint32_t>(values.size()));
+    }
+}
+
+// Module i of `from` appended to `to`, its stored parameters copied as they are.
+inline void copyModule(const ModuleString& from, std::size_t i, ModuleString& to) {
+    const auto& starts = from.paramStarts();
+    const Symbol s = from.symbol(i);
+    if (starts.empty()) return appendModule<float>(to, s, nullptr, 0);
+    const std::size_t b = starts[i], n = starts[i + 1] - b;
+    if (from.precision() == Precision::Single)
+        appendModule(to, s, from.floatParams().data() + b, n);
+    else
+        appendModule(to, s, from.doubleParams().data() + b, n);
+}
+
 // The step that rewrites a module of string `level`, and its table.
 struct StepOf {
     int number;
@@ -61,9 +97,60 @@ class ChunkWalker {
           fixed_(ls.symbols.size()) {
         for (std::size_t s = 0; s < fixed_.size(); ++s)
             fixed_[s] = !engine_.rewrites(static_cast<Symbol>(s));
+        // The productions applied without a choice, per (table, symbol, arity).
+        tables_ = std::max<std::size_t>(1, ls.tableNames.size());
+        symbols_ = ls.symbols.size();
+        direct_.assign(tables_ * symbols_ * kArities, nullptr);
+        std::size_t slots = 1, args = 1;
+        for (const Production& p : ls.productions) {
+            slots = std::max(slots, static_cast<std::size_t>(std::max(0, p.slotCount)));
+            for (const auto& m : p.successor) args = std::max(args, m.args.size());
+        }
+        slots_.assign(slots, 0);
+        args_.assign(args, 0);
+        for (std::size_t t = 0; t < tables_; ++t)
+            for (std::size_t s = 0; s < symbols_; ++s)
+                for (std::size_t a = 0; a < kArities; ++a)
+                    for (const Production& p : ls.productions) {
+                        if (p.table >= 0 && static_cast<std::size_t>(p.table) != t) continue;
+                        if (p.predecessor.size() != 1 || p.predecessor[0].symbol != s) continue;
+                        if (p.predecessor[0].formals.size() != a) continue;
+                        bool plain = !p.condition && !p.probability && !p.hasBlocks() &&
+                                     !p.hasContext();
+                        for (const auto& m : p.successor)
+                            for (const auto& arg : m.args) plain &= !arg.needsContext();
+                        if (plain) direct_[(t * symbols_ + s) * kArities + a] = &p;
+                        break;
+                    }
     }
 
     RewritingEngine& engine() { return engine_; }
+
+    // Appends the successor of module i of `s` to `out` as expandOne() would, evaluating
+    // the arguments directly when the production is known from the symbol and arity alone
+    // and its arguments need no context (most parametric L-systems): no choice to make,
+    // no call per module into the engine.
+    void expand(const ModuleString& s, std::size_t i, StepOf step, ModuleString& out) {
+        const ParamView params = s.params(i);
+        const Production* p = direct(step.table, s.symbol(i), params.size());
+        if (p) {
+            const std::size_t mark = out.size();
+            try {
+                for (std::size_t k = 0; k < params.size(); ++k) slots_[k] = params[k];
+                const std::span<const double> vars(slots_.data(), slots_.size());
+                for (const auto& m : p->successor) {
+                    const std::size_t n = m.args.size();
+                    for (std::size_t a = 0; a < n; ++a) args_[a] = m.args[a].evaluate(vars);
+                    appendModule(out, m.symbol, args_.data(), n);
+                }
+                return;
+            } catch (const Error&) {
+                // The engine says where it failed.
+                truncate(out, mark);
+            }
+        }
+        engine_.expandOne(s, i, 0, step.number, step.table, out);
+    }
     bool fixed(Symbol s) const { return fixed_[s]; }
     StepOf stepOf(int level) const { return {level + 1, ls_.tableForStep(level + 1)}; }
 
@@ -97,7 +184,7 @@ class ChunkWalker {
             if (d + 1 == depth && expandLast(here, i, step)) continue;
             ModuleString& next = levels_[d + 1];
             next.clear();
-            engine_.expandOne(here, i, 0, step.number, step.table, next);
+            expand(here, i, step, next);
             cursor_[d + 1] = 0;
             end_[d + 1] = next.size();
             ++d;
@@ -105,6 +192,23 @@ class ChunkWalker {
     }
 
   private:
+    static constexpr std::size_t kArities = 8;
+
+    const Production* direct(int table, Symbol s, std::size_t arity) const {
+        if (arity >= kArities) return nullptr;
+        const std::size_t t =
+            std::min<std::size_t>(static_cast<std::size_t>(std::max(0, table)), tables_ - 1);
+        return direct_[(t * symbols_ + s) * kArities + arity];
+    }
+    static void truncate(ModuleString& out, std::size_t modules) {
+        ModuleString kept(out.precision());
+        for (std::size_t i = 0; i < modules; ++i) kept.push(out.symbol(i), out.params(i));
+        out = std::move(kept);
+    }
+
+    std::size_t tables_ = 1, symbols_ = 0;
+    std::vector<const Production*> direct_;
+    std::vector<double> slots_, args_;
     const LSystem& ls_;
     int steps_;
     const DerivationOptions& options_;
@@ -128,8 +232,7 @@ int derivePrefix(const LSystem& ls, int steps, unsigned threads, const Derivatio
         options.cancel.check();
         next.clear();
         const StepOf step = walker.stepOf(level);
-        for (std::size_t i = 0; i < out.size(); ++i)
-            walker.engine().expandOne(out, i, 0, step.number, step.table, next);
+        for (std::size_t i = 0; i < out.size(); ++i) walker.expand(out, i, step, next);
         std::swap(out, next);
         ++level;
     }
@@ -329,7 +432,7 @@ void streamDerivationParallel(const LSystem& ls, int steps,
                     held, chunkBegin(held.size(), chunks, c), chunkBegin(held.size(), chunks, c + 1),
                     level,
                     [&](const ModuleString& s, std::size_t i) {
-                        block.modules.push(s.symbol(i), s.params(i));
+                        copyModule(s, i, block.modules);
                         if (block.modules.size() >= kBlockModules) hand();
                     },
                     [](const ModuleString&, std::size_t, StepOf) { return false; });
@@ -414,7 +517,7 @@ std::vector<std::uint64_t> countStreamedParallel(const LSystem& ls, int steps,
                             return true;
                         }
                         scratch.clear();
-                        walker.engine().expandOne(s, i, 0, step.number, step.table, scratch);
+                        walker.expand(s, i, step, scratch);
                         for (Symbol x : scratch.symbols()) ++mine[x];
                         return true;
                     });

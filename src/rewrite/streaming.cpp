@@ -46,17 +46,25 @@ void streamDerivation(const LSystem& ls, int steps, ModuleSink& sink,
     // string and this thread hands their modules to the sink, in order.
     const unsigned threads = options.threads == 0 ? defaultThreadCount() : options.threads;
     if (threads > 1 && streamsInParallel(ls)) {
-        std::vector<double> scratch;
+        // A block's parameters are read as doubles once, not module by module.
+        std::vector<double> values;
         streamDerivationParallel(
             ls, steps, nullptr,
             [&](const StreamBlock& block) {
                 const ModuleString& m = block.modules;
+                const std::span<const Symbol> symbols = m.symbols();
                 if (!m.hasParameters()) {
-                    for (Symbol s : m.symbols()) sink.module(s, {});
+                    for (Symbol s : symbols) sink.module(s, {});
                     return;
                 }
-                for (std::size_t i = 0; i < m.size(); ++i)
-                    sink.module(m.symbol(i), m.params(i).doubles(scratch));
+                const double* p = m.doubleParams().data();
+                if (m.precision() == Precision::Single) {
+                    values.assign(m.floatParams().begin(), m.floatParams().end());
+                    p = values.data();
+                }
+                const std::uint32_t* starts = m.paramStarts().data();
+                for (std::size_t i = 0; i < symbols.size(); ++i)
+                    sink.module(symbols[i], {p + starts[i], starts[i + 1] - starts[i]});
             },
             options);
         return;
