@@ -413,6 +413,37 @@ void streamDerivationParallel(const LSystem& ls, int steps,
     ChunkWalker first(ls, steps, options);
     ModuleString held(options.precision);
     const int level = derivePrefix(ls, steps, threads, options, first, held);
+    std::uint64_t emitted = 0, reported = 0;
+    auto handOver = [&](const StreamBlock& block) {
+        options.cancel.check();
+        consume(block);
+        emitted += block.size;
+        if (emitted - reported >= (std::uint64_t(1) << 20) && options.progress) {
+            reported = emitted;
+            options.progress(steps, static_cast<std::size_t>(emitted));
+        }
+    };
+    if (threads == 1) {
+        // One thread: the walk hands each block over itself, no queue between.
+        StreamBlock block;
+        block.modules.setPrecision(options.precision);
+        auto hand = [&] {
+            block.size = block.modules.size();
+            if (prepare) prepare(block);
+            handOver(block);
+            block.modules.clear();
+            block.text.clear();
+        };
+        first.walk(
+            held, 0, held.size(), level,
+            [&](const ModuleString& s, std::size_t i) {
+                copyModule(s, i, block.modules);
+                if (block.modules.size() >= kBlockModules) hand();
+            },
+            [](const ModuleString&, std::size_t, StepOf) { return false; });
+        if (!block.modules.empty()) hand();
+        return;
+    }
     const std::size_t chunks = chunkCountFor(held.size(), std::size_t(threads) * kChunksPerThread);
     OrderedBlocks blocks(chunks, 2 * std::size_t(threads) + 2);
 
@@ -464,16 +495,7 @@ void streamDerivationParallel(const LSystem& ls, int steps,
     for (auto& w : walkers) workers.emplace_back([&, walker = w.get()] { work(*walker); });
 
     StreamBlock block;
-    std::uint64_t emitted = 0, reported = 0;
-    while (blocks.next(block)) {
-        options.cancel.check();
-        consume(block);
-        emitted += block.size;
-        if (emitted - reported >= (std::uint64_t(1) << 20) && options.progress) {
-            reported = emitted;
-            options.progress(steps, static_cast<std::size_t>(emitted));
-        }
-    }
+    while (blocks.next(block)) handOver(block);
 }
 
 std::vector<std::uint64_t> countStreamedParallel(const LSystem& ls, int steps,

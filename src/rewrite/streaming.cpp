@@ -43,9 +43,9 @@ void streamDerivation(const LSystem& ls, int steps, ModuleSink& sink,
         throw Error(SourceLocation{ls.file, 0, 0}, "this L-system cannot be streamed: " + why);
     if (steps < 0) steps = ls.derivationLength;
     // Without random numbers no module needs its position: workers derive chunks of the
-    // string and this thread hands their modules to the sink, in order.
-    const unsigned threads = options.threads == 0 ? defaultThreadCount() : options.threads;
-    if (threads > 1 && streamsInParallel(ls)) {
+    // string (on one thread, this one) and this thread hands their modules to the sink, in
+    // order.
+    if (streamsInParallel(ls)) {
         // A block's parameters are read as doubles once, not module by module.
         std::vector<double> values;
         streamDerivationParallel(
