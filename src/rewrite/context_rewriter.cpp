@@ -460,4 +460,35 @@ bool ContextRewriter::write(const ModuleString& cur, Symbol* out) {
     return std::any_of(applied.begin(), applied.end(), [](std::uint32_t a) { return a != 0; });
 }
 
+void ContextRewriter::count(const ModuleString& cur, std::vector<std::uint64_t>& counts) const {
+    const std::size_t n = cur.size(), chunks = chunks_;
+    const std::size_t results = resultLength_.size();
+    // Per chunk: the copies by symbol and the successors by result; the successors' symbols
+    // are added once per result at the end.
+    std::vector<std::vector<std::uint64_t>> copies(chunks), picked(chunks);
+    const Symbol* in = cur.symbols().data();
+    const std::uint8_t* choice = choice_.data() + 1;
+    forEachChunk(n, chunks, [&](std::size_t c, std::size_t b, std::size_t e) {
+        std::vector<std::uint64_t>& copy = copies[c];
+        std::vector<std::uint64_t>& pick = picked[c];
+        copy.assign(counts.size(), 0);
+        pick.assign(results, 0);
+        for (std::size_t i = b; i < e; ++i) {
+            const std::uint8_t r = choice[i];
+            if (r == 0)
+                ++copy[in[i]];
+            else
+                ++pick[r];
+        }
+    });
+    for (std::size_t c = 0; c < chunks; ++c) {
+        for (std::size_t s = 0; s < counts.size(); ++s) counts[s] += copies[c][s];
+        for (std::size_t r = 1; r < results; ++r) {
+            if (picked[c][r] == 0) continue;
+            for (std::uint32_t k = resultStart_[r - 1]; k < resultStart_[r]; ++k)
+                counts[resultSymbols_[k]] += picked[c][r];
+        }
+    }
+}
+
 }  // namespace graftal

@@ -34,6 +34,9 @@ class ContextRewriter {
     // Writes the successors picked by the last choose() to `out`, which holds as many
     // symbols as choose() returned. Returns false when every module was copied unchanged.
     bool write(const ModuleString& cur, Symbol* out);
+    // Adds to `counts` (one per symbol) the modules write() would write after the last
+    // choose(), without writing them: what the last step of `stats` needs.
+    void count(const ModuleString& cur, std::vector<std::uint64_t>& counts) const;
     // Bytes of the per-module scratch buffer in use (for the memory limit).
     std::size_t scratchBytes() const { return choice_.size(); }
 

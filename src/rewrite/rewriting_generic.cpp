@@ -231,17 +231,47 @@ void RewritingEngine::writeGeneric(const ModuleString& cur, const T* params, T* 
 bool RewritingEngine::countStep(const ModuleString& cur, std::vector<std::uint64_t>& counts,
                                 int stepNumber, int table, std::size_t limit) {
     table = std::clamp(table, 0, static_cast<int>(tableCount_) - 1);
-    // Blocks run per module in string order; the fast and context paths write directly.
-    if (sequential_ || (!genericOnly_ && !cur.hasParameters() && (fast_ || context_))) return false;
+    // Blocks run per module in string order.
+    if (sequential_) return false;
     const std::size_t n = cur.size();
     const std::size_t chunks = chunkCount(n);
+    const std::size_t symbolCount = ls_.symbols.size();
+    if (!genericOnly_ && !cur.hasParameters() && fast_) {
+        // Each module's successor is fixed by its symbol: count the symbols, then add each
+        // symbol's successor as many times.
+        std::vector<std::vector<std::uint64_t>> seen(chunks);
+        const Symbol* syms = cur.symbols().data();
+        forEachChunk(n, chunks, [&](std::size_t c, std::size_t b, std::size_t e) {
+            seen[c].assign(symbolCount, 0);
+            for (std::size_t i = b; i < e; ++i) ++seen[c][syms[i]];
+        });
+        const std::vector<std::uint32_t>& start = fastStart_[static_cast<std::size_t>(table)];
+        const std::vector<Symbol>& successors = fastSymbols_[static_cast<std::size_t>(table)];
+        std::uint64_t total = 0;
+        counts.assign(symbolCount, 0);
+        for (std::size_t s = 0; s < symbolCount; ++s) {
+            std::uint64_t times = 0;
+            for (const auto& t : seen) times += t[s];
+            if (times == 0) continue;
+            for (std::uint32_t k = start[s]; k < start[s + 1]; ++k) counts[successors[k]] += times;
+            total += times * (start[s + 1] - start[s]);
+        }
+        checkLimit(stepNumber, static_cast<std::size_t>(total), 0, 0, cur, limit);
+        return true;
+    }
+    if (!genericOnly_ && !cur.hasParameters() && context_) {
+        const std::size_t total = context_->choose(cur, stepNumber, table, chunks);
+        checkLimit(stepNumber, total, 0, context_->scratchBytes(), cur, limit);
+        counts.assign(symbolCount, 0);
+        context_->count(cur, counts);
+        return true;
+    }
     std::vector<std::size_t> modCount, paramCount, rewritten;
     chooseAll(cur, stepNumber, table, nullptr, chunks, modCount, paramCount, rewritten);
     // The string is not written, but the limit is the one the step would meet.
     checkLimit(stepNumber, std::accumulate(modCount.begin(), modCount.end(), std::size_t(0)),
                std::accumulate(paramCount.begin(), paramCount.end(), std::size_t(0)),
                n * sizeof(ChoiceCode), cur, limit);
-    const std::size_t symbolCount = ls_.symbols.size();
     std::vector<std::vector<std::uint64_t>> tallies(chunks);
     const Symbol* syms = cur.symbols().data();
     const ChoiceCode* choice = choice_.data();
