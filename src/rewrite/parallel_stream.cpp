@@ -101,17 +101,21 @@ class ChunkWalker {
         tables_ = std::max<std::size_t>(1, ls.tableNames.size());
         symbols_ = ls.symbols.size();
         direct_.assign(tables_ * symbols_ * kArities, nullptr);
-        std::size_t slots = 1, args = 1;
-        for (const Production& p : ls.productions) {
+        std::size_t slots = 1;
+        directs_.resize(ls.productions.size());
+        for (std::size_t k = 0; k < ls.productions.size(); ++k) {
+            const Production& p = ls.productions[k];
             slots = std::max(slots, static_cast<std::size_t>(std::max(0, p.slotCount)));
-            for (const auto& m : p.successor) args = std::max(args, m.args.size());
+            directs_[k].production = &p;
+            directs_[k].modules = p.successor.size();
+            for (const auto& m : p.successor) directs_[k].params += m.args.size();
         }
         slots_.assign(slots, 0);
-        args_.assign(args, 0);
         for (std::size_t t = 0; t < tables_; ++t)
             for (std::size_t s = 0; s < symbols_; ++s)
                 for (std::size_t a = 0; a < kArities; ++a)
-                    for (const Production& p : ls.productions) {
+                    for (std::size_t k = 0; k < ls.productions.size(); ++k) {
+                        const Production& p = ls.productions[k];
                         if (p.table >= 0 && static_cast<std::size_t>(p.table) != t) continue;
                         if (p.predecessor.size() != 1 || p.predecessor[0].symbol != s) continue;
                         if (p.predecessor[0].formals.size() != a) continue;
@@ -119,7 +123,7 @@ class ChunkWalker {
                                      !p.hasContext();
                         for (const auto& m : p.successor)
                             for (const auto& arg : m.args) plain &= !arg.needsContext();
-                        if (plain) direct_[(t * symbols_ + s) * kArities + a] = &p;
+                        if (plain) direct_[(t * symbols_ + s) * kArities + a] = &directs_[k];
                         break;
                     }
     }
@@ -132,17 +136,14 @@ class ChunkWalker {
     // no call per module into the engine.
     void expand(const ModuleString& s, std::size_t i, StepOf step, ModuleString& out) {
         const ParamView params = s.params(i);
-        const Production* p = direct(step.table, s.symbol(i), params.size());
-        if (p) {
+        if (const Direct* d = direct(step.table, s.symbol(i), params.size())) {
             const std::size_t mark = out.size();
             try {
                 for (std::size_t k = 0; k < params.size(); ++k) slots_[k] = params[k];
-                const std::span<const double> vars(slots_.data(), slots_.size());
-                for (const auto& m : p->successor) {
-                    const std::size_t n = m.args.size();
-                    for (std::size_t a = 0; a < n; ++a) args_[a] = m.args[a].evaluate(vars);
-                    appendModule(out, m.symbol, args_.data(), n);
-                }
+                if (out.precision() == Precision::Single)
+                    writeSuccessor(*d, out, out.rawFloats());
+                else
+                    writeSuccessor(*d, out, out.rawParams());
                 return;
             } catch (const Error&) {
                 // The engine says where it failed.
@@ -194,11 +195,42 @@ class ChunkWalker {
   private:
     static constexpr std::size_t kArities = 8;
 
-    const Production* direct(int table, Symbol s, std::size_t arity) const {
+    // A production applied without a choice, and the size of its successor.
+    struct Direct {
+        const Production* production = nullptr;
+        std::size_t modules = 0, params = 0;
+    };
+
+    const Direct* direct(int table, Symbol s, std::size_t arity) const {
         if (arity >= kArities) return nullptr;
         const std::size_t t =
             std::min<std::size_t>(static_cast<std::size_t>(std::max(0, table)), tables_ - 1);
         return direct_[(t * symbols_ + s) * kArities + arity];
+    }
+
+    // The successor of `d` on the parameters in slots_, appended to `out` (whose stored
+    // parameters are `values`) with one resize of each buffer.
+    template <class Values>
+    void writeSuccessor(const Direct& d, ModuleString& out, Values& values) {
+        auto& symbols = out.rawSymbols();
+        auto& starts = out.rawParamStart();
+        const std::size_t m0 = symbols.size(), v0 = values.size();
+        if (starts.empty()) starts.assign(m0 + 1, 0);
+        symbols.resize(m0 + d.modules);
+        starts.resize(m0 + 1 + d.modules);
+        values.resize(v0 + d.params);
+        Symbol* sym = symbols.data() + m0;
+        std::uint32_t* start = starts.data() + m0 + 1;
+        auto* value = values.data() + v0;
+        std::size_t at = v0;
+        const std::span<const double> vars(slots_.data(), slots_.size());
+        for (const auto& m : d.production->successor) {
+            *sym++ = m.symbol;
+            for (const auto& arg : m.args)
+                *value++ = static_cast<typename Values::value_type>(arg.evaluate(vars));
+            at += m.args.size();
+            *start++ = static_cast<std::uint32_t>(at);
+        }
     }
     static void truncate(ModuleString& out, std::size_t modules) {
         ModuleString kept(out.precision());
@@ -207,8 +239,9 @@ class ChunkWalker {
     }
 
     std::size_t tables_ = 1, symbols_ = 0;
-    std::vector<const Production*> direct_;
-    std::vector<double> slots_, args_;
+    std::vector<Direct> directs_;  // per production
+    std::vector<const Direct*> direct_;
+    std::vector<double> slots_;
     const LSystem& ls_;
     int steps_;
     const DerivationOptions& options_;
