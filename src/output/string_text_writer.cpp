@@ -101,22 +101,23 @@ StringTextFormatter::StringTextFormatter(const SymbolTable& symbols)
 
 StringTextFormatter::~StringTextFormatter() = default;
 
-void StringTextFormatter::append(const ModuleString& string, std::string& out) {
+void StringTextFormatter::append(const ModuleString& string, std::size_t b, std::size_t e,
+                                 std::string& out) {
     State& st = *state_;
-    const std::span<const Symbol> all = string.symbols();
-    if (!string.hasParameters() && SymbolNames::isOwnText(all)) {
-        out.append(reinterpret_cast<const char*>(all.data()), all.size());
+    const std::span<const Symbol> run = string.symbols().subspan(b, e - b);
+    if (!string.hasParameters() && SymbolNames::isOwnText(run)) {
+        out.append(reinterpret_cast<const char*>(run.data()), run.size());
         return;
     }
     st.buffer.clear();
     if (!string.hasParameters())
-        formatNames(all, st.names, st.buffer);
+        formatNames(run, st.names, st.buffer);
     else if (string.precision() == Precision::Single)
-        formatParametric(string, string.floatParams().data(), st.names, 0, all.size(), st.buffer,
+        formatParametric(string, string.floatParams().data(), st.names, b, e, st.buffer,
                          st.cache);
     else
-        formatParametric(string, string.doubleParams().data(), st.names, 0, all.size(),
-                         st.buffer, st.cache);
+        formatParametric(string, string.doubleParams().data(), st.names, b, e, st.buffer,
+                         st.cache);
     out.append(st.buffer.data(), st.buffer.size());
 }
 

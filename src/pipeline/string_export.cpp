@@ -34,9 +34,8 @@ void streamTextInParallel(const Model& model, int steps, const DerivationOptions
     };
     streamDerivationParallel(
         model.lsystem, steps,
-        [&](StreamBlock& block) {
-            formatter().append(block.modules, block.text);
-            block.modules.clear();
+        [&](const ModuleString& string, std::size_t b, std::size_t e, StreamBlock& block) {
+            formatter().append(string, b, e, block.text);
         },
         [&](const StreamBlock& block) {
             out.write(block.text.data(), static_cast<std::streamsize>(block.text.size()));

@@ -85,7 +85,7 @@ struct StepOf {
 };
 
 // Expands the modules [b, e) of the string of step `first` depth-first to step `steps`,
-// handing every final module to emit(string, index) in order. A worker's own engine and
+// handing the final modules to emit(string, begin, end) in order, in runs of a string. A worker's own engine and
 // level strings are kept from chunk to chunk.
 class ChunkWalker {
   public:
@@ -173,13 +173,24 @@ class ChunkWalker {
                 --d;
                 continue;
             }
-            const std::size_t i = cursor_[d]++;
+            const std::size_t i = cursor_[d];
             const ModuleString& here = d == 0 ? held : levels_[d];
-            const Symbol s = here.symbol(i);
-            if (d == depth || fixed_[s]) {
-                emit(here, i);
+            if (d == depth) {
+                // A string of the last step: all of it at once.
+                emit(here, i, end_[d]);
+                cursor_[d] = end_[d];
                 continue;
             }
+            const Symbol s = here.symbol(i);
+            if (fixed_[s]) {
+                // Modules no step rewrites, as many as follow each other.
+                std::size_t j = i + 1;
+                while (j < end_[d] && fixed_[here.symbol(j)]) ++j;
+                emit(here, i, j);
+                cursor_[d] = j;
+                continue;
+            }
+            ++cursor_[d];
             if ((++expansions_ & 0xFFFu) == 0) options_.cancel.check();
             const StepOf step = stepOf(first + static_cast<int>(d));
             if (d + 1 == depth && expandLast(here, i, step)) continue;
@@ -340,6 +351,7 @@ class OrderedBlocks {
         return b;
     }
     void recycle(StreamBlock&& b) {
+        b.size = 0;
         b.modules.clear();
         b.text.clear();
         if (free_.size() < 4 * window_) free_.push_back(std::move(b));
@@ -437,7 +449,7 @@ bool parallelStreamPays(const LSystem& ls, int steps, unsigned threads) {
 }
 
 void streamDerivationParallel(const LSystem& ls, int steps,
-                              const std::function<void(StreamBlock&)>& prepare,
+                              const StreamBlockWriter& write,
                               const std::function<void(const StreamBlock&)>& consume,
                               const DerivationOptions& options) {
     refuseUnlessParallel(ls);
@@ -456,25 +468,32 @@ void streamDerivationParallel(const LSystem& ls, int steps,
             options.progress(steps, static_cast<std::size_t>(emitted));
         }
     };
+    // Modules [b, e) of `s` into the block: as the caller writes them, or copied.
+    auto add = [&](const ModuleString& s, std::size_t b, std::size_t e, StreamBlock& block) {
+        if (write)
+            write(s, b, e, block);
+        else
+            for (std::size_t i = b; i < e; ++i) copyModule(s, i, block.modules);
+        block.size += e - b;
+    };
     if (threads == 1) {
         // One thread: the walk hands each block over itself, no queue between.
         StreamBlock block;
         block.modules.setPrecision(options.precision);
         auto hand = [&] {
-            block.size = block.modules.size();
-            if (prepare) prepare(block);
             handOver(block);
+            block.size = 0;
             block.modules.clear();
             block.text.clear();
         };
         first.walk(
             held, 0, held.size(), level,
-            [&](const ModuleString& s, std::size_t i) {
-                copyModule(s, i, block.modules);
-                if (block.modules.size() >= kBlockModules) hand();
+            [&](const ModuleString& s, std::size_t b, std::size_t e) {
+                add(s, b, e, block);
+                if (block.size >= kBlockModules) hand();
             },
             [](const ModuleString&, std::size_t, StepOf) { return false; });
-        if (!block.modules.empty()) hand();
+        if (block.size) hand();
         return;
     }
     const std::size_t chunks = chunkCountFor(held.size(), std::size_t(threads) * kChunksPerThread);
@@ -487,20 +506,18 @@ void streamDerivationParallel(const LSystem& ls, int steps,
             std::exception_ptr error;
             try {
                 auto hand = [&] {
-                    block.size = block.modules.size();
-                    if (prepare) prepare(block);
                     blocks.put(c, block);
                     block.modules.setPrecision(options.precision);
                 };
                 walker.walk(
                     held, chunkBegin(held.size(), chunks, c), chunkBegin(held.size(), chunks, c + 1),
                     level,
-                    [&](const ModuleString& s, std::size_t i) {
-                        copyModule(s, i, block.modules);
-                        if (block.modules.size() >= kBlockModules) hand();
+                    [&](const ModuleString& s, std::size_t b, std::size_t e) {
+                        add(s, b, e, block);
+                        if (block.size >= kBlockModules) hand();
                     },
                     [](const ModuleString&, std::size_t, StepOf) { return false; });
-                if (!block.modules.empty()) hand();
+                if (block.size) hand();
             } catch (const OrderedBlocks::Aborted&) {
                 return;
             } catch (...) {
@@ -558,7 +575,11 @@ std::vector<std::uint64_t> countStreamedParallel(const LSystem& ls, int steps,
                 for (std::uint64_t n : mine) before += n;
                 walker.walk(
                     held, chunkBegin(held.size(), chunks, c), chunkBegin(held.size(), chunks, c + 1),
-                    level, [&](const ModuleString& s, std::size_t i) { ++mine[s.symbol(i)]; },
+                    level,
+                    [&](const ModuleString& s, std::size_t b, std::size_t e) {
+                        const Symbol* run = s.symbols().data();
+                        for (std::size_t i = b; i < e; ++i) ++mine[run[i]];
+                    },
                     [&](const ModuleString& s, std::size_t i, StepOf step) {
                         bool identity = false;
                         const Symbol sym = s.symbol(i);

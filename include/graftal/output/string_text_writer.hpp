@@ -26,7 +26,9 @@ class StringTextFormatter {
   public:
     explicit StringTextFormatter(const SymbolTable& symbols);
     ~StringTextFormatter();
-    void append(const ModuleString& string, std::string& out);
+    // Modules [begin, end) of `string`.
+    void append(const ModuleString& string, std::size_t begin, std::size_t end,
+                std::string& out);
 
   private:
     struct State;

@@ -29,22 +29,25 @@ unsigned parallelThreads(unsigned threads);
 // at every step) and its last string is predicted to hold a million modules or more.
 bool parallelStreamPays(const LSystem& lsystem, int steps, unsigned threads);
 
-// A piece of the final string, in order: its modules, and whatever the workers' `prepare`
-// made of them (the text a writer formats in parallel).
+// A piece of the final string, in order: `size` modules, held in `modules` or written as the
+// caller's writer wrote them (the text a writer formats in parallel).
 struct StreamBlock {
-    std::size_t size = 0;  // modules in the block (`modules` may be cleared by `prepare`)
+    std::size_t size = 0;
     ModuleString modules;
     std::string text;
 };
 
+// Writes modules [begin, end) of a string into a block (on a worker's thread).
+using StreamBlockWriter = std::function<void(const ModuleString& string, std::size_t begin,
+                                             std::size_t end, StreamBlock& block)>;
+
 // Calls consume(block) on the calling thread for every block of the string derived in
 // `steps` steps (the file's derivation length when negative), in order. options.threads
-// workers (0: one per core) derive, and call prepare(block) (when given) on each block
-// before it is handed over; options.cancel is looked at by every worker and
-// options.progress is called from the calling thread. Throws Error when
+// workers (0: one per core) derive, and write the final modules into the blocks with
+// `write` (when empty: copied into block.modules); options.cancel is looked at by every
+// worker and options.progress is called from the calling thread. Throws Error when
 // !streamsInParallel(lsystem).
-void streamDerivationParallel(const LSystem& lsystem, int steps,
-                              const std::function<void(StreamBlock&)>& prepare,
+void streamDerivationParallel(const LSystem& lsystem, int steps, const StreamBlockWriter& write,
                               const std::function<void(const StreamBlock&)>& consume,
                               const DerivationOptions& options = {});
 
