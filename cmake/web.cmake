@@ -42,6 +42,7 @@ set(GRAFTAL_WEB_SOURCES
   src/rewrite/output_files.cpp src/rewrite/environment.cpp
   src/rewrite/environment_obstacles.cpp src/rewrite/environment_occupancy.cpp
   src/rewrite/environment_process.cpp src/rewrite/streamed_runs.cpp
+  src/rewrite/parallel_stream.cpp
   # geometry
   src/geometry/scene.cpp src/geometry/kolam_dots.cpp src/geometry/mesh.cpp
   src/geometry/mesh_scene.cpp src/geometry/mesh_scene_builder.cpp

@@ -37,6 +37,7 @@ class TextBuffer {
         used_ += n;
     }
     void append(std::string_view s) { append(s.data(), s.size()); }
+    const char* data() const { return bytes_.data(); }
     void writeTo(std::ostream& out) const {
         out.write(bytes_.data(), static_cast<std::streamsize>(used_));
     }

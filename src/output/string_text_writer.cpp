@@ -89,6 +89,38 @@ void writeStringText(const ModuleString& string, const SymbolTable& symbols, std
     out.put('\n');
 }
 
+struct StringTextFormatter::State {
+    explicit State(const SymbolTable& symbols) : names(symbols) {}
+    SymbolNames names;
+    NumberCache cache;
+    TextBuffer buffer;
+};
+
+StringTextFormatter::StringTextFormatter(const SymbolTable& symbols)
+    : state_(std::make_unique<State>(symbols)) {}
+
+StringTextFormatter::~StringTextFormatter() = default;
+
+void StringTextFormatter::append(const ModuleString& string, std::size_t b, std::size_t e,
+                                 std::string& out) {
+    State& st = *state_;
+    const std::span<const Symbol> run = string.symbols().subspan(b, e - b);
+    if (!string.hasParameters() && SymbolNames::isOwnText(run)) {
+        out.append(reinterpret_cast<const char*>(run.data()), run.size());
+        return;
+    }
+    st.buffer.clear();
+    if (!string.hasParameters())
+        formatNames(run, st.names, st.buffer);
+    else if (string.precision() == Precision::Single)
+        formatParametric(string, string.floatParams().data(), st.names, b, e, st.buffer,
+                         st.cache);
+    else
+        formatParametric(string, string.doubleParams().data(), st.names, b, e, st.buffer,
+                         st.cache);
+    out.append(st.buffer.data(), st.buffer.size());
+}
+
 struct StringTextStream::State {
     State(const SymbolTable& symbols, Precision p, std::ostream& o)
         : names(symbols), precision(p), out(o), buffer(kStreamPiece + (1 << 16)) {}

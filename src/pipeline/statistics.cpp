@@ -2,12 +2,46 @@
 // gives them exactly.
 #include "graftal/pipeline/statistics.hpp"
 
+#include <array>
+
 #include "graftal/pipeline/stages.hpp"
 #include "graftal/rewrite/derivation.hpp"
+#include "graftal/rewrite/parallel_stream.hpp"
+#include "graftal/rewrite/streamed_runs.hpp"
 #include "graftal/turtle/d0l_measure.hpp"
 #include "graftal/turtle/streamed_interpretation.hpp"
 
 namespace graftal {
+
+namespace {
+
+// The symbols of the string derived in runs (streamed_runs.hpp), every module counted as
+// its run goes by: four tables, so that a run of one symbol does not wait on one counter.
+std::vector<std::uint64_t> countRuns(const Model& model, int steps,
+                                     const DerivationOptions& options) {
+    std::array<std::array<std::uint64_t, kMaxSymbols>, 4> tables{};
+    streamDerivationRuns(
+        model.lsystem, steps,
+        [&](std::span<const Symbol> run) {
+            const Symbol* p = run.data();
+            const std::size_t n = run.size();
+            std::size_t i = 0;
+            for (; i + 4 <= n; i += 4) {
+                ++tables[0][p[i]];
+                ++tables[1][p[i + 1]];
+                ++tables[2][p[i + 2]];
+                ++tables[3][p[i + 3]];
+            }
+            for (; i < n; ++i) ++tables[0][p[i]];
+        },
+        options);
+    std::vector<std::uint64_t> counts(model.lsystem.symbols.size(), 0);
+    for (std::size_t s = 0; s < counts.size(); ++s)
+        counts[s] = tables[0][s] + tables[1][s] + tables[2][s] + tables[3][s];
+    return counts;
+}
+
+}  // namespace
 
 ModelStatistics measured(const Model& model, const DeriveRequest& request, bool geometry) {
     ModelStatistics stats;
@@ -35,8 +69,29 @@ ModelStatistics measured(const Model& model, const DeriveRequest& request, bool 
             return stats;
         }
     }
-    if (streamed) {
-        const StreamedMeasure m = measureStreamed(model, steps, options, geometry);
+    const LSystem& ls = model.lsystem;
+    if (!geometry && streamsInRuns(ls)) {
+        // A D0-L string counted as it streams in runs: nothing is held.
+        stats.streamed = true;
+        stats.symbolCounts = countRuns(model, steps, options);
+        for (std::uint64_t c : stats.symbolCounts) stats.modules += c;
+        return stats;
+    }
+    // A parametric string streamed by parallel workers is not held at all, and is counted
+    // or drawn about as fast as a held one: taken whenever it pays.
+    const bool parallel = streamsInParallel(ls) && parallelThreads(request.threads) > 1 &&
+                          (streamed || (request.stream == StreamPolicy::Auto &&
+                                        parallelStreamPays(ls, steps, request.threads)));
+    if (!geometry && parallel) {
+        stats.streamed = true;
+        stats.symbolCounts = countStreamedParallel(ls, steps, options);
+        for (std::uint64_t c : stats.symbolCounts) stats.modules += c;
+        return stats;
+    }
+    if (streamed || (parallel && ls.homomorphism.empty())) {
+        // The box a held string reports: cpfg's view volume for a cpfg file.
+        const bool viewVolume = !streamed && !ls.legacyPfg;
+        const StreamedMeasure m = measureStreamed(model, steps, options, geometry, viewVolume);
         stats.streamed = true;
         stats.modules = m.modules;
         stats.symbolCounts = m.symbolCounts;

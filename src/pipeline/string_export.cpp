@@ -4,14 +4,45 @@
 // speed), module by module when the prediction says the string would not fit.
 #include "string_export.hpp"
 
+#include <map>
+#include <memory>
+#include <mutex>
+#include <thread>
+
 #include "graftal/output/string_json_writer.hpp"
 #include "graftal/output/string_text_writer.hpp"
+#include "graftal/rewrite/parallel_stream.hpp"
 #include "graftal/rewrite/streamed_runs.hpp"
 #include "graftal/rewrite/streaming.hpp"
 
 namespace graftal {
 
 namespace {
+
+// The text of the string streamed in parallel: each worker formats its blocks (with the
+// held string's formatting), this thread writes them in order.
+void streamTextInParallel(const Model& model, int steps, const DerivationOptions& options,
+                          std::ostream& out) {
+    // One formatter a worker, each keeping the texts of the numbers it has met.
+    std::mutex mutex;
+    std::map<std::thread::id, std::unique_ptr<StringTextFormatter>> formatters;
+    auto formatter = [&]() -> StringTextFormatter& {
+        std::lock_guard lock(mutex);
+        auto& f = formatters[std::this_thread::get_id()];
+        if (!f) f = std::make_unique<StringTextFormatter>(model.lsystem.symbols);
+        return *f;
+    };
+    streamDerivationParallel(
+        model.lsystem, steps,
+        [&](const ModuleString& string, std::size_t b, std::size_t e, StreamBlock& block) {
+            formatter().append(string, b, e, block.text);
+        },
+        [&](const StreamBlock& block) {
+            out.write(block.text.data(), static_cast<std::streamsize>(block.text.size()));
+        },
+        options);
+    out.put('\n');
+}
 
 // Streams the string into `sink` (StringTextStream or StringJsonStream).
 template <class Sink>
@@ -39,13 +70,23 @@ ExportResult writeDerivedString(const ExportFormat& format, const Model& model,
     const bool streamed =
         shouldStream(model, steps, request, canStream, false, false, result.notes);
     const bool inRuns = canStream && streamsInRuns(model.lsystem);
+    // Text is formatted by the workers of the parallel stream, which also holds no string:
+    // taken whenever it is at least as fast as the held derivation.
+    const bool parallel = canStream && !json && !inRuns &&
+                          (streamed || (request.stream == StreamPolicy::Auto &&
+                                        parallelStreamPays(model.lsystem, steps,
+                                                           request.threads))) &&
+                          streamsInParallel(model.lsystem) &&
+                          parallelThreads(request.threads) > 1;
     const SymbolTable& symbols = model.lsystem.symbols;
     const StringJsonHeader header{
         request.inputName.empty() ? model.lsystem.file : request.inputName, steps};
-    if (streamed || inRuns) {
+    if (streamed || inRuns || parallel) {
         const DerivationOptions options = derivationOptions(model, request);
         destination.write(what, [&](std::ostream& out) {
-            if (json) {
+            if (parallel) {
+                streamTextInParallel(model, steps, options, out);
+            } else if (json) {
                 StringJsonStream sink(symbols, header, request.precision, out);
                 streamInto(sink, model, steps, inRuns, options);
             } else {

@@ -6,6 +6,7 @@
 #include "graftal/rewrite/streaming.hpp"
 
 #include "graftal/core/parallel.hpp"
+#include "graftal/rewrite/parallel_stream.hpp"
 #include "rewriting_engine.hpp"
 
 namespace graftal {
@@ -41,6 +42,33 @@ void streamDerivation(const LSystem& ls, int steps, ModuleSink& sink,
     if (std::string why = streamingObstacle(ls); !why.empty())
         throw Error(SourceLocation{ls.file, 0, 0}, "this L-system cannot be streamed: " + why);
     if (steps < 0) steps = ls.derivationLength;
+    // Without random numbers no module needs its position: workers derive chunks of the
+    // string (on one thread, this one) and this thread hands their modules to the sink, in
+    // order.
+    if (streamsInParallel(ls)) {
+        // A block's parameters are read as doubles once, not module by module.
+        std::vector<double> values;
+        streamDerivationParallel(
+            ls, steps, nullptr,
+            [&](const StreamBlock& block) {
+                const ModuleString& m = block.modules;
+                const std::span<const Symbol> symbols = m.symbols();
+                if (!m.hasParameters()) {
+                    for (Symbol s : symbols) sink.module(s, {});
+                    return;
+                }
+                const double* p = m.doubleParams().data();
+                if (m.precision() == Precision::Single) {
+                    values.assign(m.floatParams().begin(), m.floatParams().end());
+                    p = values.data();
+                }
+                const std::uint32_t* starts = m.paramStarts().data();
+                for (std::size_t i = 0; i < symbols.size(); ++i)
+                    sink.module(symbols[i], {p + starts[i], starts[i + 1] - starts[i]});
+            },
+            options);
+        return;
+    }
     RewritingEngine engine(ls, ls.productions, options.seed.value_or(ls.seed), 1);
     bool random = false;
     for (const auto& p : ls.productions) {

@@ -24,6 +24,7 @@ class TurtleStream : public ModuleSink {
         machine_.module(s, params, index_++);
     }
     void finish() { machine_.finish(); }
+    turtle::TurtleMachine<Sink>& machine() { return machine_; }
 
   private:
     turtle::TurtleMachine<Sink> machine_;
@@ -46,7 +47,7 @@ class CountingSink : public ModuleSink {
 }  // namespace
 
 StreamedMeasure measureStreamed(const Model& model, int steps, const DerivationOptions& options,
-                                bool geometry) {
+                                bool geometry, bool viewVolume) {
     const LSystem& ls = model.lsystem;
     StreamedMeasure m;
     m.symbolCounts.assign(ls.symbols.size(), 0);
@@ -57,8 +58,10 @@ StreamedMeasure measureStreamed(const Model& model, int steps, const DerivationO
     }
     MeasureSink sink(m);
     TurtleStream<MeasureSink> stream(model, sink, &m);
+    if (viewVolume) stream.machine().trackViewVolume();
     streamDerivation(ls, steps, stream, options);
     stream.finish();
+    if (viewVolume) m.bounds = stream.machine().viewVolume();
     return m;
 }
 

@@ -6,6 +6,7 @@
 #include <memory>
 #include <ostream>
 #include <span>
+#include <string>
 
 #include "graftal/core/module_string.hpp"
 #include "graftal/rewrite/streaming.hpp"
@@ -17,6 +18,22 @@ namespace graftal {
 // count.
 void writeStringText(const ModuleString& string, const SymbolTable& symbols, std::ostream& out,
                      unsigned threads = 0);
+
+// The text of held strings, or of the pieces of one, appended without the final newline;
+// the numbers' texts it has found are kept from piece to piece. Each worker of a parallel
+// stream formats its blocks with its own.
+class StringTextFormatter {
+  public:
+    explicit StringTextFormatter(const SymbolTable& symbols);
+    ~StringTextFormatter();
+    // Modules [begin, end) of `string`.
+    void append(const ModuleString& string, std::size_t begin, std::size_t end,
+                std::string& out);
+
+  private:
+    struct State;
+    std::unique_ptr<State> state_;
+};
 
 // The same text for a string handed over as it is derived (a streamed derivation): modules
 // one by one, or runs of modules without parameters, gathered into large pieces.

@@ -24,9 +24,11 @@ struct StreamedMeasure {
 };
 
 // Derives depth-first and walks the turtle over the modules as they come (when
-// `geometry`), keeping only counts and bounds.
+// `geometry`), keeping only counts and bounds; with `viewVolume` the bounds are cpfg's view
+// volume (cpfgViewVolume()) instead of the drawing's box.
 StreamedMeasure measureStreamed(const Model& model, int steps,
-                                const DerivationOptions& options = {}, bool geometry = true);
+                                const DerivationOptions& options = {}, bool geometry = true,
+                                bool viewVolume = false);
 
 // The same counts and bounds for a string already derived, walking the turtle without
 // storing any geometry (what `graftal stats` needs, at any size).
