@@ -18,7 +18,10 @@ The modes, and what each command produces:
           graftal derive M.l M.v > OUT          cpfg -g -m MAP -str OUT M.l M.v
   derive  the derivation, nothing written.
           graftal stats M.l M.v --no-geometry   cpfg -g -m MAP M.l M.v
-          graftal counts the last step's modules from the step before without building it;
+          graftal counts the last string's modules without holding that string: a D0L
+          string streamed in runs through a counter, a parametric one streamed depth first
+          on every core with its last step counted from the successors chosen, a
+          context-sensitive one counted from the productions chosen for the string before;
           cpfg's batch mode always interprets the final string with its turtle to find the
           view volume (control.c, NO_GRAPHICS_MODE calls CalculateViewVolume), and has no
           mode without it, so its "derive" row does the turtle's work too.
