@@ -125,6 +125,35 @@ TEST(Streaming, MemoryLimitRefusesAndStreamSucceeds) {
     EXPECT_NE(r.out.find("\"segments\": 8388608"), std::string::npos) << r.out;
 }
 
+// Conditions hide the growth from the prediction, so the string is held until it meets
+// the limit; the error then names --stream, which derives it in bounded memory (it is not
+// taken by itself: without a prediction nothing bounds how long it would run). An L-system
+// that cannot stream is not told to.
+TEST(Streaming, AnUnpredictedStringOverTheLimitSuggestsTheStream) {
+    using graftal::testing::runGraftal;
+    graftal::testing::TempDir t;
+    auto f = t.write("grow.l",
+                     "Lsystem: 1\nderivation length: 22\naxiom: A(1)\n"
+                     "A(x) : x < 20 --> A(x+1)[B(x)]A(x+1)\n"
+                     "A(x) : x >= 20 --> A(x+1)C(x)\nendlsystem\n");
+    for (const std::string command : {"derive", "stats", "stats --no-geometry"}) {
+        auto r = runGraftal(command + " " + f.string() + " --memory-limit 8M -q");
+        EXPECT_NE(r.status, 0) << command;
+        EXPECT_NE(r.err.find("more than the memory limit"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("use --stream"), std::string::npos) << command << ": " << r.err;
+    }
+    auto r = runGraftal("stats " + f.string() + " --memory-limit 8M --stream --no-geometry -q");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("\"modules\": 3670013"), std::string::npos) << r.out;
+    auto g = t.write("ctx.l",
+                     "Lsystem: 1\nderivation length: 22\naxiom: A(1)\n"
+                     "B(y) < A(x) : x < 20 --> A(x+1)[B(x)]A(x+1)\n"
+                     "A(x) : x < 20 --> A(x+1)[B(x)]A(x+1)\nendlsystem\n");
+    r = runGraftal("stats " + g.string() + " --memory-limit 8M --no-geometry -q");
+    EXPECT_NE(r.status, 0);
+    EXPECT_EQ(r.err.find("--stream"), std::string::npos) << r.err;
+}
+
 TEST(Streaming, AKochCurveWithManyStrokesPerPixelIsDrawnFromItsSummaries) {
     // fig2.5e at n = 9 has 7.8 million segments: over four per pixel of an 800x800 picture.
     // Held, derived and stroked one by one it took seconds and 700 MB; from its summaries

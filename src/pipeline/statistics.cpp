@@ -104,13 +104,19 @@ ModelStatistics measured(const Model& model, const DeriveRequest& request, bool 
     if (!geometry && steps > 0) {
         // Symbol counts alone: the last step is counted without being written, which
         // halves the memory (and the fresh pages) the derivation needs.
-        Derivation d(model, options);
-        d.run(steps - 1);
-        std::vector<std::uint64_t> counts = d.countNextStep();
-        if (counts.empty()) {
-            d.step();
-            d.finish();
-            counts = countSymbols(d.current(), model.lsystem.symbols.size(), request.threads);
+        std::vector<std::uint64_t> counts;
+        try {
+            Derivation d(model, options);
+            d.run(steps - 1);
+            counts = d.countNextStep();
+            if (counts.empty()) {
+                d.step();
+                d.finish();
+                counts = countSymbols(d.current(), model.lsystem.symbols.size(), request.threads);
+            }
+        } catch (const Error& e) {
+            if (auto suggested = withStreamRemedy(e, model, request, true)) throw *suggested;
+        throw;
         }
         for (std::uint64_t c : counts) stats.modules += c;
         stats.symbolCounts = std::move(counts);
@@ -118,7 +124,13 @@ ModelStatistics measured(const Model& model, const DeriveRequest& request, bool 
     }
     DeriveRequest exact = request;
     exact.steps = steps;
-    Derived derivedModel = derived(model, exact);
+    Derived derivedModel;
+    try {
+        derivedModel = derived(model, exact);
+    } catch (const Error& e) {
+        if (auto suggested = withStreamRemedy(e, model, request, true)) throw *suggested;
+        throw;
+    }
     const ModuleString& modules = derivedModel.modules;
     stats.modules = modules.size();
     const bool homomorphism = !model.lsystem.homomorphism.empty();

@@ -2,6 +2,7 @@
 // makes for a derivation.
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "graftal/pipeline/pipeline.hpp"
@@ -167,6 +168,22 @@ bool shouldStream(const Model& model, int steps, const DeriveRequest& request, b
     if (!overStreamLimit.empty() && expanded < kLongestStreamWorthSuggesting)
         d.remedies.push_back(Remedy::RaiseStreamLimit);
     throw Error(std::move(d));
+}
+
+std::optional<Error> withStreamRemedy(const Error& error, const Model& model,
+                                      const DeriveRequest& request, bool canStream) {
+    if (request.stream != StreamPolicy::Auto || !canStream ||
+        dynamic_cast<const Cancelled*>(&error) || error.diagnostics().size() != 1 ||
+        !streamingObstacle(model.lsystem).empty())
+        return std::nullopt;
+    std::vector<Diagnostic> ds = error.diagnostics();
+    std::vector<Remedy>& remedies = ds.front().remedies;
+    const auto has = [&](Remedy r) {
+        return std::find(remedies.begin(), remedies.end(), r) != remedies.end();
+    };
+    if (!has(Remedy::RaiseMemoryLimit) || has(Remedy::Stream)) return std::nullopt;
+    remedies.push_back(Remedy::Stream);
+    return Error(std::move(ds));
 }
 
 }  // namespace graftal

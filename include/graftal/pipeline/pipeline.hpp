@@ -128,6 +128,14 @@ int checkedSteps(int steps, std::optional<int> maxSteps = std::nullopt,
 bool shouldStream(const Model& model, int steps, const DeriveRequest& request, bool canStream,
                   bool countGeometry, bool pixelBound, std::vector<Diagnostic>& notes);
 
+// `error` with Remedy::Stream added when it is the memory limit met by a held derivation
+// that streaming would not meet: the growth could not be predicted ahead (conditions), so
+// shouldStream() held the string. The stream is suggested, not taken by itself: without a
+// prediction nothing bounds how long it would run. Empty for any other error (rethrow it
+// as it is: it may be a Cancelled).
+std::optional<Error> withStreamRemedy(const Error& error, const Model& model,
+                                      const DeriveRequest& request, bool canStream);
+
 // The options of a derivation made for a request (its query resolver places the turtle of
 // the model's view).
 DerivationOptions derivationOptions(const Model& model, const DeriveRequest& request);
