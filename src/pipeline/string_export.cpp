@@ -4,6 +4,7 @@
 // speed), module by module when the prediction says the string would not fit.
 #include "string_export.hpp"
 
+#include <atomic>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -23,14 +24,24 @@ namespace {
 // held string's formatting), this thread writes them in order.
 void streamTextInParallel(const Model& model, int steps, const DerivationOptions& options,
                           std::ostream& out) {
-    // One formatter a worker, each keeping the texts of the numbers it has met.
+    // One formatter a worker, each keeping the texts of the numbers it has met. The writer
+    // is called for every run of modules, often a few modules long: each thread finds its
+    // formatter under the lock once per call of this function, then in its own memory.
+    static std::atomic<std::uint64_t> calls{0};
+    const std::uint64_t call = ++calls;
     std::mutex mutex;
     std::map<std::thread::id, std::unique_ptr<StringTextFormatter>> formatters;
     auto formatter = [&]() -> StringTextFormatter& {
-        std::lock_guard lock(mutex);
-        auto& f = formatters[std::this_thread::get_id()];
-        if (!f) f = std::make_unique<StringTextFormatter>(model.lsystem.symbols);
-        return *f;
+        thread_local std::uint64_t seenCall = 0;
+        thread_local StringTextFormatter* mine = nullptr;
+        if (seenCall != call) {
+            std::lock_guard lock(mutex);
+            auto& f = formatters[std::this_thread::get_id()];
+            if (!f) f = std::make_unique<StringTextFormatter>(model.lsystem.symbols);
+            mine = f.get();
+            seenCall = call;
+        }
+        return *mine;
     };
     streamDerivationParallel(
         model.lsystem, steps,
