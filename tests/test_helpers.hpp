@@ -44,4 +44,11 @@ inline std::string parseError(const std::string& text) {
     return "";
 }
 
+// A streamed derivation's modules, kept as a string to compare with a held one.
+class ModuleCollector : public ModuleSink {
+  public:
+    ModuleString s;
+    void module(Symbol sym, std::span<const double> p) override { s.push(sym, p); }
+};
+
 }  // namespace graftal::testing

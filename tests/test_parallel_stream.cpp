@@ -19,11 +19,7 @@ using graftal::testing::parseModel;
 
 namespace {
 
-class Collect : public ModuleSink {
-  public:
-    ModuleString s;
-    void module(Symbol sym, std::span<const double> p) override { s.push(sym, p); }
-};
+using Collect = graftal::testing::ModuleCollector;
 
 // The examples the parallel stream applies to, each with a step count whose string has
 // between a few hundred and about 200,000 modules (so that several chunks are made).

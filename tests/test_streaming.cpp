@@ -17,11 +17,7 @@ using graftal::testing::parseModel;
 
 namespace {
 
-class Collect : public ModuleSink {
-  public:
-    ModuleString s;
-    void module(Symbol sym, std::span<const double> p) override { s.push(sym, p); }
-};
+using Collect = graftal::testing::ModuleCollector;
 
 const char* kClasses[] = {
     "Lsystem: 1\nangle factor: 4\naxiom: F+F+F+F\nF --> F+F-F-FF+F+F-F\nendlsystem\n",

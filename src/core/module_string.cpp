@@ -245,24 +245,27 @@ std::string ModuleString::toString(const SymbolTable& table) const {
     return std::move(os).str();
 }
 
+void tallySymbols(std::span<const Symbol> run, std::uint64_t* t, std::size_t symbolCount) {
+    const Symbol* p = run.data();
+    const std::size_t n = run.size();
+    std::size_t i = 0;
+    for (; i + 4 <= n; i += 4) {
+        ++t[p[i]];
+        ++t[symbolCount + p[i + 1]];
+        ++t[2 * symbolCount + p[i + 2]];
+        ++t[3 * symbolCount + p[i + 3]];
+    }
+    for (; i < n; ++i) ++t[p[i]];
+}
+
 std::vector<std::uint64_t> countSymbols(const ModuleString& s, std::size_t symbolCount,
                                         unsigned threads) {
     std::span<const Symbol> syms = s.symbols();
     std::size_t chunks = syms.size() < (1u << 20) ? 1 : (threads ? threads : defaultThreadCount());
-    // Four tallies per chunk: a string of few symbols would otherwise increment the same
-    // counter back to back, each increment waiting for the previous one's store.
     std::vector<std::vector<std::uint64_t>> tallies(chunks,
                                                     std::vector<std::uint64_t>(4 * symbolCount));
     forEachChunk(syms.size(), chunks, [&](std::size_t c, std::size_t b, std::size_t e) {
-        std::uint64_t* t = tallies[c].data();
-        std::size_t i = b;
-        for (; i + 4 <= e; i += 4) {
-            ++t[syms[i]];
-            ++t[symbolCount + syms[i + 1]];
-            ++t[2 * symbolCount + syms[i + 2]];
-            ++t[3 * symbolCount + syms[i + 3]];
-        }
-        for (; i < e; ++i) ++t[syms[i]];
+        tallySymbols(syms.subspan(b, e - b), tallies[c].data(), symbolCount);
     });
     std::vector<std::uint64_t> counts(symbolCount, 0);
     for (const auto& t : tallies)

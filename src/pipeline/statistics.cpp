@@ -2,8 +2,6 @@
 // gives them exactly.
 #include "graftal/pipeline/statistics.hpp"
 
-#include <array>
-
 #include "graftal/pipeline/stages.hpp"
 #include "graftal/rewrite/derivation.hpp"
 #include "graftal/rewrite/parallel_stream.hpp"
@@ -16,28 +14,17 @@ namespace graftal {
 namespace {
 
 // The symbols of the string derived in runs (streamed_runs.hpp), every module counted as
-// its run goes by: four tables, so that a run of one symbol does not wait on one counter.
+// its run goes by.
 std::vector<std::uint64_t> countRuns(const Model& model, int steps,
                                      const DerivationOptions& options) {
-    std::array<std::array<std::uint64_t, kMaxSymbols>, 4> tables{};
+    const std::size_t symbols = model.lsystem.symbols.size();
+    std::vector<std::uint64_t> tallies(4 * symbols, 0);
     streamDerivationRuns(
         model.lsystem, steps,
-        [&](std::span<const Symbol> run) {
-            const Symbol* p = run.data();
-            const std::size_t n = run.size();
-            std::size_t i = 0;
-            for (; i + 4 <= n; i += 4) {
-                ++tables[0][p[i]];
-                ++tables[1][p[i + 1]];
-                ++tables[2][p[i + 2]];
-                ++tables[3][p[i + 3]];
-            }
-            for (; i < n; ++i) ++tables[0][p[i]];
-        },
+        [&](std::span<const Symbol> run) { tallySymbols(run, tallies.data(), symbols); },
         options);
-    std::vector<std::uint64_t> counts(model.lsystem.symbols.size(), 0);
-    for (std::size_t s = 0; s < counts.size(); ++s)
-        counts[s] = tables[0][s] + tables[1][s] + tables[2][s] + tables[3][s];
+    std::vector<std::uint64_t> counts(symbols, 0);
+    for (std::size_t k = 0; k < tallies.size(); ++k) counts[k % symbols] += tallies[k];
     return counts;
 }
 

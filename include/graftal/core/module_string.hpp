@@ -226,6 +226,11 @@ class ModuleString {
 std::vector<std::uint64_t> countSymbols(const ModuleString& s, std::size_t symbolCount,
                                         unsigned threads = 0);
 
+// Adds the symbols of `run` to `tallies`: four tables of `symbolCount` counters one after
+// the other (a symbol's count is the sum of its four), so that a run of few distinct
+// symbols does not make each increment wait for the previous one's store.
+void tallySymbols(std::span<const Symbol> run, std::uint64_t* tallies, std::size_t symbolCount);
+
 // Shortest decimal text that reads back as the same double; integers without a point.
 std::string formatNumber(double v);
 // The same for a 32-bit float: the shortest text that reads back as the same float.
