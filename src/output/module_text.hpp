@@ -5,6 +5,8 @@
 // per module.
 #pragma once
 
+#include <algorithm>
+#include <array>
 #include <cstdint>
 #include <cstring>
 #include <ostream>
@@ -12,40 +14,14 @@
 #include <string>
 #include <vector>
 
+#include "graftal/core/byte_buffer.hpp"
 #include "graftal/core/module_string.hpp"
 #include "graftal/core/parallel.hpp"
 
 namespace graftal::module_text {
 
-// Bytes appended through a pointer; room is made before each module (room()), so a module
-// is copied without a check per byte.
-class TextBuffer {
-  public:
-    // The capacity is reserved, not filled: a short string touches only the pages it uses.
-    explicit TextBuffer(std::size_t capacity = 0) { bytes_.reserve(capacity); }
-    std::size_t size() const { return used_; }
-    bool empty() const { return used_ == 0; }
-    void clear() { used_ = 0; }
-    // A pointer with room for `n` more bytes after what is written; commit(end) takes them.
-    char* room(std::size_t n) {
-        if (used_ + n > bytes_.size()) bytes_.resize(std::max(bytes_.size() * 2, used_ + n));
-        return bytes_.data() + used_;
-    }
-    void commit(char* end) { used_ = static_cast<std::size_t>(end - bytes_.data()); }
-    void append(const char* p, std::size_t n) {
-        std::memcpy(room(n), p, n);
-        used_ += n;
-    }
-    void append(std::string_view s) { append(s.data(), s.size()); }
-    const char* data() const { return bytes_.data(); }
-    void writeTo(std::ostream& out) const {
-        out.write(bytes_.data(), static_cast<std::streamsize>(used_));
-    }
-
-  private:
-    std::string bytes_;
-    std::size_t used_ = 0;
-};
+// Bytes appended through a pointer (graftal/core/byte_buffer.hpp).
+using TextBuffer = ByteBuffer;
 
 // The texts of parameters seen recently, by their bits: the parameters of a plant take few
 // distinct values (lengths and widths scaled by the same ratios), and copying a text is
@@ -99,15 +75,33 @@ inline constexpr std::size_t kParameterRoom = kNumberTextCapacity + 2;
 struct SymbolNames {
     explicit SymbolNames(const SymbolTable& table) {
         names.resize(kMaxSymbols);
-        for (std::size_t s = 0; s < table.size(); ++s)
+        shortNames.resize(table.size());
+        for (std::size_t s = 0; s < table.size(); ++s) {
             names[s] = table.name(static_cast<Symbol>(s));
+            if (names[s].size() <= kShort)
+                std::memcpy(shortNames[s].data(), names[s].data(), names[s].size());
+        }
+    }
+    // Room the name of `s` takes when written by put().
+    std::size_t roomFor(Symbol s) const { return std::max(kShort, names[s].size()); }
+    // The name of `s` at `p`, which has roomFor(s) bytes; a short name is copied with a
+    // fixed-length copy (a few instructions, not a call).
+    char* put(char* p, Symbol s) const {
+        const std::string& name = names[s];
+        if (name.size() <= kShort && s < shortNames.size())
+            std::memcpy(p, shortNames[s].data(), kShort);
+        else
+            std::memcpy(p, name.data(), name.size());
+        return p + name.size();
     }
     static bool isOwnText(std::span<const Symbol> run) {
         unsigned high = 0;
         for (Symbol s : run) high |= s;
         return high < kFirstNamedSymbol;
     }
+    static constexpr std::size_t kShort = 16;
     std::vector<std::string> names;
+    std::vector<std::array<char, kShort>> shortNames;
 };
 
 // The parameters of a held string, read without a ParamView per module.

@@ -44,20 +44,17 @@ void formatParametric(const ModuleString& s, const T* values, const SymbolNames&
     const Symbol* symbols = s.symbols().data();
     const std::uint32_t* starts = s.paramStarts().data();
     for (std::size_t i = b; i < e; ++i) {
-        const std::string& name = names.names[symbols[i]];
+        const Symbol sym = symbols[i];
         const std::size_t first = starts[i], n = starts[i + 1] - first;
-        char* p = out.room(name.size() + 2 + n * kParameterRoom);
-        p = copyName(p, name);
+        char* p = out.room(names.roomFor(sym) + 2 + n * kParameterRoom);
+        p = names.put(p, sym);
         if (n) p = parameterText(p, values + first, n, cache);
         out.commit(p);
     }
 }
 
 void formatNames(std::span<const Symbol> symbols, const SymbolNames& names, TextBuffer& out) {
-    for (Symbol s : symbols) {
-        const std::string& name = names.names[s];
-        out.commit(copyName(out.room(name.size()), name));
-    }
+    for (Symbol s : symbols) out.commit(names.put(out.room(names.roomFor(s)), s));
 }
 
 }  // namespace
@@ -93,7 +90,6 @@ struct StringTextFormatter::State {
     explicit State(const SymbolTable& symbols) : names(symbols) {}
     SymbolNames names;
     NumberCache cache;
-    TextBuffer buffer;
 };
 
 StringTextFormatter::StringTextFormatter(const SymbolTable& symbols)
@@ -102,23 +98,17 @@ StringTextFormatter::StringTextFormatter(const SymbolTable& symbols)
 StringTextFormatter::~StringTextFormatter() = default;
 
 void StringTextFormatter::append(const ModuleString& string, std::size_t b, std::size_t e,
-                                 std::string& out) {
+                                 ByteBuffer& out) {
     State& st = *state_;
     const std::span<const Symbol> run = string.symbols().subspan(b, e - b);
-    if (!string.hasParameters() && SymbolNames::isOwnText(run)) {
+    if (!string.hasParameters() && SymbolNames::isOwnText(run))
         out.append(reinterpret_cast<const char*>(run.data()), run.size());
-        return;
-    }
-    st.buffer.clear();
-    if (!string.hasParameters())
-        formatNames(run, st.names, st.buffer);
+    else if (!string.hasParameters())
+        formatNames(run, st.names, out);
     else if (string.precision() == Precision::Single)
-        formatParametric(string, string.floatParams().data(), st.names, b, e, st.buffer,
-                         st.cache);
+        formatParametric(string, string.floatParams().data(), st.names, b, e, out, st.cache);
     else
-        formatParametric(string, string.doubleParams().data(), st.names, b, e, st.buffer,
-                         st.cache);
-    out.append(st.buffer.data(), st.buffer.size());
+        formatParametric(string, string.doubleParams().data(), st.names, b, e, out, st.cache);
 }
 
 struct StringTextStream::State {

@@ -49,7 +49,7 @@ void streamTextInParallel(const Model& model, int steps, const DerivationOptions
             formatter().append(string, b, e, block.text);
         },
         [&](const StreamBlock& block) {
-            out.write(block.text.data(), static_cast<std::streamsize>(block.text.size()));
+            block.text.writeTo(out);
         },
         options);
     out.put('\n');

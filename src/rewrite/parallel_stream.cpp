@@ -32,8 +32,12 @@ constexpr std::size_t kPrefixModulesPerThread = 8192;
 // Chunks a thread: enough that a chunk whose subtrees grow little and one whose subtrees
 // grow much even out.
 constexpr std::size_t kChunksPerThread = 32;
-// Blocks a chunk may hold before its worker waits for the caller.
+// Blocks the chunk the caller reads may hold before its worker waits; blocks all the other
+// chunks may hold together, a thread, before their workers wait. A worker on a later chunk
+// keeps going while the caller still reads an earlier one, whose subtrees may be many
+// times larger: a cap per chunk would leave it idle after a few blocks.
 constexpr std::size_t kQueuedBlocks = 4;
+constexpr std::size_t kAheadBlocksPerThread = 24;
 
 unsigned threadCount(const DerivationOptions& options) {
     return parallelThreads(options.threads);
@@ -286,8 +290,8 @@ int derivePrefix(const LSystem& ls, int steps, unsigned threads, const Derivatio
 // The chunks' queues of blocks, read in order by the caller.
 class OrderedBlocks {
   public:
-    OrderedBlocks(std::size_t chunks, std::size_t window)
-        : chunks_(chunks), window_(window), queues_(chunks), done_(chunks, false),
+    OrderedBlocks(std::size_t chunks, std::size_t window, std::size_t ahead)
+        : chunks_(chunks), window_(window), ahead_(ahead), queues_(chunks), done_(chunks, false),
           errors_(chunks) {}
 
     // The next chunk to derive, once it lies within the window; chunks_ when there is none.
@@ -300,9 +304,14 @@ class OrderedBlocks {
     // Hands over a full block of chunk c; `block` comes back empty (a recycled one).
     void put(std::size_t c, StreamBlock& block) {
         std::unique_lock lock(mutex_);
-        workers_.wait(lock, [&] { return aborted_ || queues_[c].size() < kQueuedBlocks; });
+        // The chunk being read never waits for the others: the caller waits for it.
+        workers_.wait(lock, [&] {
+            return aborted_ || (c == read_ ? queues_[c].size() < kQueuedBlocks
+                                           : queued_ - queues_[read_].size() < ahead_);
+        });
         if (aborted_) throw Aborted{};
         queues_[c].push_back(std::move(block));
+        ++queued_;
         block = fresh();
         if (c == read_) reader_.notify_one();
     }
@@ -323,6 +332,7 @@ class OrderedBlocks {
                 recycle(std::move(block));
                 block = std::move(q.front());
                 q.pop_front();
+                --queued_;
                 workers_.notify_all();
                 return true;
             }
@@ -357,7 +367,8 @@ class OrderedBlocks {
         if (free_.size() < 4 * window_) free_.push_back(std::move(b));
     }
 
-    std::size_t chunks_, window_;
+    std::size_t chunks_, window_, ahead_;
+    std::size_t queued_ = 0;  // blocks in all the queues
     std::mutex mutex_;
     std::condition_variable workers_, reader_;
     std::vector<std::deque<StreamBlock>> queues_;
@@ -497,7 +508,8 @@ void streamDerivationParallel(const LSystem& ls, int steps,
         return;
     }
     const std::size_t chunks = chunkCountFor(held.size(), std::size_t(threads) * kChunksPerThread);
-    OrderedBlocks blocks(chunks, 2 * std::size_t(threads) + 2);
+    OrderedBlocks blocks(chunks, 4 * std::size_t(threads) + 2,
+                         kAheadBlocksPerThread * std::size_t(threads));
 
     auto work = [&](ChunkWalker& walker) {
         StreamBlock block;

@@ -8,6 +8,7 @@
 #include <span>
 #include <string>
 
+#include "graftal/core/byte_buffer.hpp"
 #include "graftal/core/module_string.hpp"
 #include "graftal/rewrite/streaming.hpp"
 
@@ -28,7 +29,7 @@ class StringTextFormatter {
     ~StringTextFormatter();
     // Modules [begin, end) of `string`.
     void append(const ModuleString& string, std::size_t begin, std::size_t end,
-                std::string& out);
+                ByteBuffer& out);
 
   private:
     struct State;

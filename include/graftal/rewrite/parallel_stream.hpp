@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "graftal/core/byte_buffer.hpp"
 #include "graftal/rewrite/derivation.hpp"
 
 namespace graftal {
@@ -34,7 +35,7 @@ bool parallelStreamPays(const LSystem& lsystem, int steps, unsigned threads);
 struct StreamBlock {
     std::size_t size = 0;
     ModuleString modules;
-    std::string text;
+    ByteBuffer text;
 };
 
 // Writes modules [begin, end) of a string into a block (on a worker's thread).
