@@ -200,11 +200,21 @@ std::uint32_t ContextRewriter::pick(std::uint32_t cell, std::uint64_t step,
 // them each chunk has a slot of its own for "nobody", whose row 0 writes nothing (one
 // shared slot would bounce between the cores' caches). The state is kept in scalars and
 // the rare cases out of line, so that the loop keeps everything in registers.
-template <bool Unknown>
+//
+// Counting (Tally), a module is counted where its choice is final instead: a waiting one
+// when it is settled, one whose left context is not known yet in decide().
+template <bool Unknown, bool Tally>
 void ContextRewriter::scan(const Symbol* in, std::size_t b, std::size_t e, Scan& st,
                            const SymbolInfo* info, std::uint64_t step) {
     const std::uint32_t* cells = cells_.data();
     std::uint8_t* slot = choice_.data();
+    std::uint64_t* tally = Tally ? st.tally.data() : nullptr;
+    const std::uint64_t last = n_;
+    // Counts the final choice `cell` of the module in slot k.
+    auto note = [&](std::uint64_t k, std::uint32_t cell) {
+        const std::uint32_t r = cell & 0xFFu;
+        ++tally[r ? r : kCopiedTally + in[k - 1]];
+    };
     const std::uint64_t nobody = st.nobody;
     std::uint32_t left = st.axis.left, row = st.axis.row;
     std::uint64_t waiting = st.axis.waiting;
@@ -220,7 +230,11 @@ void ContextRewriter::scan(const Symbol* in, std::size_t b, std::size_t e, Scan&
         std::uint32_t cell = cells[row + right];
         if (cell & kGroup) [[unlikely]]
             cell = pick(cell, step, waiting - 1);
-        slot[waiting] = static_cast<std::uint8_t>(cell);
+        if constexpr (Tally) {
+            if (waiting <= last) note(waiting, cell);
+        } else {
+            slot[waiting] = static_cast<std::uint8_t>(cell);
+        }
         count += cell >> 8;
     };
     for (std::size_t i = b; i < e; ++i) {
@@ -228,15 +242,17 @@ void ContextRewriter::scan(const Symbol* in, std::size_t b, std::size_t e, Scan&
         const std::uint32_t kind = infoKind(si);
         const bool waits = infoWaits(si);
         std::uint32_t own = infoBase(si) + left, cell = 0;
+        bool deferred = false;
         if (Unknown && left >= kUnknown) [[unlikely]] {
             if (!waits) deferChoice(st, i + 1, left, 0);
             own = left | kDeferRow;
+            deferred = true;
         } else {
             cell = cells[own];
             if (cell & kGroup) [[unlikely]]
                 cell = pick(cell, step, i);
         }
-        slot[i + 1] = static_cast<std::uint8_t>(cell);
+        if constexpr (!Tally) slot[i + 1] = static_cast<std::uint8_t>(cell);
         if (kind < kIgnoredKind) {
             settle(kind);
             if (waits) {
@@ -246,11 +262,13 @@ void ContextRewriter::scan(const Symbol* in, std::size_t b, std::size_t e, Scan&
                 row = 0;
                 waiting = nobody;
                 count += cell >> 8;
+                if (Tally && !deferred) note(i + 1, cell);
             }
             left = infoRow(si);
             continue;
         }
         count += cell >> 8;
+        if (Tally && !deferred) note(i + 1, cell);
         if (kind == kIgnoredKind) continue;
         if (kind == kOpenKind) {
             stack.push_back(Level{left, waiting, row});
@@ -329,15 +347,25 @@ void ContextRewriter::decide(std::uint64_t step, std::uint64_t slot, std::uint32
     if (slot > n_) return;  // nobody
     std::uint64_t position = slot - 1;
     std::uint32_t cell = pick(cells_[row + right], step, position);
-    choice_[slot] = static_cast<std::uint8_t>(cell);
     std::size_t c = static_cast<std::size_t>(
         std::upper_bound(bounds_.begin(), bounds_.end(), position) - bounds_.begin() - 1);
     scans_[c].count += cell >> 8;
+    if (tally_) {
+        const std::uint32_t r = cell & 0xFFu;
+        ++scans_[c].tally[r ? r : kCopiedTally + in_[position]];
+    } else {
+        choice_[slot] = static_cast<std::uint8_t>(cell);
+    }
 }
 
 // Scans the chunks in parallel, then settles in chunk order what each left open. False
 // when a chunk had too many deferred choices to note.
 bool ContextRewriter::scanChunks(std::size_t n, std::size_t chunks, std::uint64_t step) {
+    return tally_ ? scanChunksAs<true>(n, chunks, step) : scanChunksAs<false>(n, chunks, step);
+}
+
+template <bool Tally>
+bool ContextRewriter::scanChunksAs(std::size_t n, std::size_t chunks, std::uint64_t step) {
     const Symbol* in = in_;
     const SymbolInfo* info = info_[table_].data();
     chunks_ = chunks;
@@ -353,12 +381,13 @@ bool ContextRewriter::scanChunks(std::size_t n, std::size_t chunks, std::uint64_
         st.overflow = false;
         st.count = 0;
         st.nobody = n + 1 + kNobodyStride * c;
+        if (Tally) st.tally.assign(kCopiedTally + kMaxSymbols, 0);
         if (c == 0) {
             st.axis = {0, st.nobody, 0};
-            scan<false>(in, b, e, st, info, step);
+            scan<false, Tally>(in, b, e, st, info, step);
         } else {
             st.axis = {kUnknown, kIncoming, kDeferRow};
-            scan<true>(in, b, e, st, info, step);
+            scan<true, Tally>(in, b, e, st, info, step);
         }
     });
     for (const auto& st : scans_)
@@ -390,24 +419,55 @@ bool ContextRewriter::scanChunks(std::size_t n, std::size_t chunks, std::uint64_
     return true;
 }
 
-std::size_t ContextRewriter::choose(const ModuleString& cur, int stepNumber, int table,
-                                    std::size_t chunks) {
-    std::size_t n = cur.size();
+std::size_t ContextRewriter::prepare(const ModuleString& cur, int table, std::size_t chunks) {
+    const std::size_t n = cur.size();
     in_ = cur.symbols().data();
     table_ = static_cast<std::size_t>(table);
-    chunks = chunkCountFor(n, chunks);
+    n_ = n;
+    nobody_ = n + 1;
+    return chunkCountFor(n, chunks);
+}
+
+std::size_t ContextRewriter::choose(const ModuleString& cur, int stepNumber, int table,
+                                    std::size_t chunks) {
+    const std::size_t n = cur.size();
+    chunks = prepare(cur, table, chunks);
     // Room for the longer strings of later steps, as for the strings themselves.
     if (choice_.capacity() < n + 1 + kNobodyStride * chunks) {
         choice_.clear();
         choice_.reserve(4 * (n + 1 + kNobodyStride * chunks));
     }
     choice_.resize(n + 1 + kNobodyStride * chunks);
-    n_ = n;
-    nobody_ = n + 1;
+    tally_ = false;
     const auto step = static_cast<std::uint64_t>(stepNumber);
     if (!scanChunks(n, chunks, step)) scanChunks(n, 1, step);
     std::size_t total = 0;
     for (const auto& s : scans_) total += s.count;
+    return total;
+}
+
+std::size_t ContextRewriter::chooseAndCount(const ModuleString& cur, int stepNumber, int table,
+                                            std::size_t chunks,
+                                            std::vector<std::uint64_t>& counts) {
+    const std::size_t n = cur.size();
+    chunks = prepare(cur, table, chunks);
+    tally_ = true;
+    struct Reset {
+        bool& tally;
+        ~Reset() { tally = false; }
+    } reset{tally_};
+    const auto step = static_cast<std::uint64_t>(stepNumber);
+    if (!scanChunks(n, chunks, step)) scanChunks(n, 1, step);
+    std::size_t total = 0;
+    for (const Scan& st : scans_) {
+        total += st.count;
+        for (std::size_t s = 0; s < counts.size(); ++s) counts[s] += st.tally[kCopiedTally + s];
+        for (std::size_t r = 1; r < resultLength_.size(); ++r) {
+            if (st.tally[r] == 0) continue;
+            for (std::uint32_t k = resultStart_[r - 1]; k < resultStart_[r]; ++k)
+                counts[resultSymbols_[k]] += st.tally[r];
+        }
+    }
     return total;
 }
 
@@ -458,37 +518,6 @@ bool ContextRewriter::write(const ModuleString& cur, Symbol* out) {
         applied[c] = any;
     });
     return std::any_of(applied.begin(), applied.end(), [](std::uint32_t a) { return a != 0; });
-}
-
-void ContextRewriter::count(const ModuleString& cur, std::vector<std::uint64_t>& counts) const {
-    const std::size_t n = cur.size(), chunks = chunks_;
-    const std::size_t results = resultLength_.size();
-    // Per chunk: the copies by symbol and the successors by result; the successors' symbols
-    // are added once per result at the end.
-    std::vector<std::vector<std::uint64_t>> copies(chunks), picked(chunks);
-    const Symbol* in = cur.symbols().data();
-    const std::uint8_t* choice = choice_.data() + 1;
-    forEachChunk(n, chunks, [&](std::size_t c, std::size_t b, std::size_t e) {
-        std::vector<std::uint64_t>& copy = copies[c];
-        std::vector<std::uint64_t>& pick = picked[c];
-        copy.assign(counts.size(), 0);
-        pick.assign(results, 0);
-        for (std::size_t i = b; i < e; ++i) {
-            const std::uint8_t r = choice[i];
-            if (r == 0)
-                ++copy[in[i]];
-            else
-                ++pick[r];
-        }
-    });
-    for (std::size_t c = 0; c < chunks; ++c) {
-        for (std::size_t s = 0; s < counts.size(); ++s) counts[s] += copies[c][s];
-        for (std::size_t r = 1; r < results; ++r) {
-            if (picked[c][r] == 0) continue;
-            for (std::uint32_t k = resultStart_[r - 1]; k < resultStart_[r]; ++k)
-                counts[resultSymbols_[k]] += picked[c][r];
-        }
-    }
 }
 
 }  // namespace graftal

@@ -34,9 +34,11 @@ class ContextRewriter {
     // Writes the successors picked by the last choose() to `out`, which holds as many
     // symbols as choose() returned. Returns false when every module was copied unchanged.
     bool write(const ModuleString& cur, Symbol* out);
-    // Adds to `counts` (one per symbol) the modules write() would write after the last
-    // choose(), without writing them: what the last step of `stats` needs.
-    void count(const ModuleString& cur, std::vector<std::uint64_t>& counts) const;
+    // choose() in a pass that notes no choice, counting what write() would write: the modules of the next string
+    // by symbol into `counts` (one per symbol), and its length returned. The string of the
+    // last step of `stats` is counted without a byte per module of the string before it.
+    std::size_t chooseAndCount(const ModuleString& cur, int stepNumber, int table,
+                               std::size_t chunks, std::vector<std::uint64_t>& counts);
     // Bytes of the per-module scratch buffer in use (for the memory limit).
     std::size_t scratchBytes() const { return choice_.size(); }
 
@@ -77,7 +79,11 @@ class ContextRewriter {
         bool overflow = false;     // more than that: the step is scanned again, in one chunk
         std::size_t count = 0;     // modules the chunk's choices write
         std::uint64_t nobody = 0;  // the chunk's own "nobody" slot
+        // Counting (chooseAndCount): the modules decided, by result (1..255), and the copied
+        // ones by symbol (kCopiedTally + symbol).
+        std::vector<std::uint64_t> tally;
     };
+    static constexpr std::size_t kCopiedTally = 256;
     struct Group {
         double sum = 0;
         std::vector<std::pair<double, std::uint8_t>> entries;  // weight > 0, result
@@ -87,13 +93,16 @@ class ContextRewriter {
     std::uint8_t cellFor(const std::vector<Production>& productions,
                          const std::vector<std::uint32_t>& cands, const std::vector<int>& classOf,
                          const std::vector<double>& weights, int lc, int rc);
-    template <bool Unknown>
+    template <bool Unknown, bool Tally>
     void scan(const Symbol* in, std::size_t b, std::size_t e, Scan& st, const SymbolInfo* info,
               std::uint64_t step);
     static void deferChoice(Scan& st, std::uint64_t slot, std::uint32_t left, std::uint32_t right);
     static void settleLater(Scan& st, std::uint64_t waiting, std::uint32_t row,
                             std::uint32_t right);
     bool scanChunks(std::size_t n, std::size_t chunks, std::uint64_t step);
+    template <bool Tally>
+    bool scanChunksAs(std::size_t n, std::size_t chunks, std::uint64_t step);
+    std::size_t prepare(const ModuleString& cur, int table, std::size_t chunks);
     void decide(std::uint64_t step, std::uint64_t slot, std::uint32_t row, std::uint32_t right);
     const Level* knownLevel(std::size_t k) const;
     std::uint32_t resolve(std::uint32_t left) const;
@@ -124,6 +133,7 @@ class ContextRewriter {
     Level known_;                      // the fix-up's state between chunks
     std::vector<Level> knownStack_;
     std::size_t chunks_ = 1;
+    bool tally_ = false;  // chooseAndCount() is running: decisions are counted, not noted
 };
 
 }  // namespace graftal

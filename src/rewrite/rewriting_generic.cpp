@@ -260,10 +260,9 @@ bool RewritingEngine::countStep(const ModuleString& cur, std::vector<std::uint64
         return true;
     }
     if (!genericOnly_ && !cur.hasParameters() && context_) {
-        const std::size_t total = context_->choose(cur, stepNumber, table, chunks);
-        checkLimit(stepNumber, total, 0, context_->scratchBytes(), cur, limit);
         counts.assign(symbolCount, 0);
-        context_->count(cur, counts);
+        const std::size_t total = context_->chooseAndCount(cur, stepNumber, table, chunks, counts);
+        checkLimit(stepNumber, total, 0, 0, cur, limit);
         return true;
     }
     std::vector<std::size_t> modCount, paramCount, rewritten;
