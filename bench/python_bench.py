@@ -10,7 +10,8 @@
 2. Reading the parameters as a NumPy array makes no copy: the peak RSS of a process that
    derives and sums model.derive().parameters against one that only derives.
 3. A sweep of POINTS derivations on a LocalCluster of two worker processes against the same
-   derivations one after the other in one process, divided by two.
+   derivations one after the other in one process, divided by two; and, as the floor under
+   it, the same derivations in two plain processes side by side, half each.
 
 Prints one line per measure and writes them as JSON to BUILD_DIR/bench/results/python.json.
 Each time is given as wall seconds and as CPU seconds (user + system, every thread): on a
@@ -114,27 +115,34 @@ def main():
     print(f"python bench: peak RSS derive() {rss_derive:.0f} MiB, with the parameters read "
           f"as NumPy {rss_view:.0f} MiB ({rss_view / rss_derive:.3f}x)")
 
-    # 3. A sweep on two worker processes against one process, one point after the other.
-    # CPU seconds: the serial run's own, and each worker's (client.run asks them).
+    # 3. A sweep on two worker processes against one process, one point after the other;
+    # medians of RUNS alternating runs. CPU seconds: the serial run's own, and each worker's
+    # (client.run asks them).
     sweep = (
-        "import resource, sys, time, graftal\n"
+        "import resource, statistics, sys, time, graftal\n"
         "from distributed import Client, LocalCluster\n"
         "def cpu():\n"
         "    r = resource.getrusage(resource.RUSAGE_SELF)\n"
         "    return r.ru_utime + r.ru_stime\n"
-        f"model = graftal.load({str(HONDA)!r})\n"
-        f"grid = {{'R2': [0.5 + 0.4 * k / {args.points} for k in range({args.points})]}}\n"
-        "c0 = cpu(); t = time.perf_counter()\n"
-        f"graftal.sweep(model, grid, steps={args.sweep_steps})\n"
-        "serial = time.perf_counter() - t; serial_cpu = cpu() - c0\n"
-        "with LocalCluster(n_workers=2, threads_per_worker=1, dashboard_address=None) as c, "
+        "def main():\n"
+        f"    model = graftal.load({str(HONDA)!r})\n"
+        f"    grid = {{'R2': [0.5 + 0.4 * k / {args.points} for k in range({args.points})]}}\n"
+        "    serial, parallel, serial_cpu, busiest = [], [], [], []\n"
+        "    with LocalCluster(n_workers=2, threads_per_worker=1, dashboard_address=None) as c, "
         "Client(c) as client:\n"
-        f"    graftal.sweep(model, {{'R2': [0.6, 0.7]}}, client, steps=2)  # workers warm\n"
-        "    w0 = client.run(cpu); t = time.perf_counter()\n"
-        f"    graftal.sweep(model, grid, client, steps={args.sweep_steps})\n"
-        "    parallel = time.perf_counter() - t; w1 = client.run(cpu)\n"
-        "    busiest = max(w1[w] - w0[w] for w in w1)\n"
-        "print(serial, parallel, serial_cpu, busiest)\n")
+        f"        graftal.sweep(model, {{'R2': [0.6, 0.7]}}, client, steps=2)  # workers warm\n"
+        f"        for _ in range({args.runs}):\n"
+        "            c0 = cpu(); t = time.perf_counter()\n"
+        f"            graftal.sweep(model, grid, steps={args.sweep_steps})\n"
+        "            serial.append(time.perf_counter() - t); serial_cpu.append(cpu() - c0)\n"
+        "            w0 = client.run(cpu); t = time.perf_counter()\n"
+        f"            graftal.sweep(model, grid, client, steps={args.sweep_steps})\n"
+        "            parallel.append(time.perf_counter() - t); w1 = client.run(cpu)\n"
+        "            busiest.append(max(w1[w] - w0[w] for w in w1))\n"
+        "    m = statistics.median\n"
+        "    print(m(serial), m(parallel), m(serial_cpu), m(busiest))\n"
+        "if __name__ == '__main__':\n"
+        "    main()\n")
     out = subprocess.run([sys.executable, "-c", sweep], env=env, check=True,
                          capture_output=True, text=True).stdout.split()
     serial, parallel, serial_cpu, busiest = map(float, out[-4:])
@@ -142,9 +150,35 @@ def main():
     report["sweep_serial_cpu_s"], report["sweep_busiest_worker_cpu_s"] = serial_cpu, busiest
     print(f"python bench ({load()}): {args.points}-point sweep (n={args.sweep_steps}): one "
           f"process {serial:.2f} s, two workers {parallel:.2f} s ({parallel / (serial / 2):.2f}x "
-          f"the serial time halved)")
+          f"the serial time halved; medians of {args.runs})")
     print(f"python bench: in CPU seconds: one process {serial_cpu:.2f}, the busier worker "
           f"{busiest:.2f} ({busiest / (serial_cpu / 2):.2f}x the serial CPU halved)")
+
+    # 3b. What the machine itself gives two processes side by side, without Dask: each
+    # derives every other point of the grid, one after the other, both starting at one
+    # instant; the time is until the later one ends. On a machine whose two cores slow each
+    # other down (a shared cache, a host's other guests) this is the floor under the sweep.
+    half = (
+        "import sys, time, graftal\n"
+        "from graftal import _sweep\n"
+        f"model = graftal.load({str(HONDA)!r})\n"
+        f"points = [{{'R2': 0.5 + 0.4 * k / {args.points}}} for k in range({args.points})]\n"
+        f"_sweep.run_points(model, points[:1], steps={args.sweep_steps})  # warm\n"
+        "start = float(sys.argv[2])\n"
+        "while time.time() < start: time.sleep(0.001)\n"
+        f"_sweep.run_points(model, points[int(sys.argv[1])::2], steps={args.sweep_steps})\n"
+        "print(time.time() - start)\n")
+    sides = []
+    for _ in range(args.runs):
+        start = time.time() + 1.5
+        both = [subprocess.Popen([sys.executable, "-c", half, str(k), repr(start)], env=env,
+                                 stdout=subprocess.PIPE, text=True) for k in (0, 1)]
+        sides.append(max(float(p.communicate()[0].split()[-1]) for p in both))
+    side = sorted(sides)[len(sides) // 2]
+    report["two_processes_side_by_side_s"] = side
+    print(f"python bench ({load()}): the same halves in two plain processes side by side: "
+          f"{side:.2f} s ({side / (serial / 2):.2f}x the serial time halved); the sweep on "
+          f"Dask takes {parallel / side:.2f}x that")
 
     results = build / "bench" / "results"
     results.mkdir(parents=True, exist_ok=True)

@@ -119,7 +119,7 @@ def run_points(model, points, **options):
     read = {}
 
     def with_defines(model, defines):
-        key = tuple(sorted((k, repr(v)) for k, v in defines.items()))
+        key = _constants(defines)
         if key not in read:
             if len(read) >= 64:  # a long serial sweep keeps a few models, not every one
                 read.clear()
@@ -129,15 +129,32 @@ def run_points(model, points, **options):
     return [run_point(model, p, _read=with_defines, **options) for p in points]
 
 
+def _constants(point):
+    """What decides which model a point reads: its #define values (not its seed)."""
+    return tuple(sorted((k, repr(v)) for k, v in point.items() if k != "seed"))
+
+
 def _batches(points, client):
-    """The points in consecutive batches, as even as can be: about four per worker thread
-    (at most 16 points each, one when there are few), their number a multiple of the
-    threads so that the workers end together."""
+    """The points' indices, one list per task: two tasks per worker thread, since on a busy
+    machine a task costs Dask tens of milliseconds. The grid is cut into short runs of
+    consecutive points with the same constants (read once per task) and the runs are dealt
+    round the tasks, so that points whose cost grows along the grid are shared evenly."""
     threads = sum(client.nthreads().values()) or 1
-    count = max(1, len(points) // 16 + (len(points) % 16 > 0), min(len(points), 4 * threads))
-    count = min(len(points), -(-count // threads) * threads) if points else 0
-    bounds = [len(points) * k // count for k in range(count + 1)] if count else [0]
-    return [points[a:b] for a, b in zip(bounds, bounds[1:])]
+    count = min(len(points), 2 * threads)
+    if count == 0:
+        return []
+    longest = max(1, len(points) // (8 * count))
+    runs = []
+    for i, point in enumerate(points):
+        key = _constants(point)
+        if runs and runs[-1][0] == key and len(runs[-1][1]) < longest:
+            runs[-1][1].append(i)
+        else:
+            runs.append((key, [i]))
+    batches = [[] for _ in range(count)]
+    for r, (_, indices) in enumerate(runs):
+        batches[r % count].extend(indices)
+    return [b for b in batches if b]
 
 
 def sweep(model, grid, client=None, *, steps=None, geometry=True, export=None, size=256,
@@ -149,8 +166,8 @@ def sweep(model, grid, client=None, *, steps=None, geometry=True, export=None, s
     model   a graftal.Model, or the path of a model file or folder
     grid    {'R2': [0.6, 0.7], 'seed': range(4)} (every combination) or a list of points;
             'seed' sets the seed, other names #define constants
-    client  a dask.distributed.Client: the points are tasks on its workers, in batches of
-            consecutive points (threads=1 per task, as the workers run tasks side by side);
+    client  a dask.distributed.Client: the points are tasks on its workers, two batches of
+            points a worker thread (threads=1 per task, as the workers run tasks side by side);
             None runs here, in order
     export  a format name ('png', 'glb', ...): a column of that name holds each point's file
             as bytes (pictures size x size pixels)
@@ -170,9 +187,13 @@ def sweep(model, grid, client=None, *, steps=None, geometry=True, export=None, s
         # The model is sent once; every task refers to it. Each task derives a batch of
         # consecutive points, in grid order.
         shared = client.scatter(model, broadcast=True)
-        futures = [client.submit(run_points, shared, batch, pure=False, **options)
-                   for batch in _batches(points, client)]
-        rows = [row for batch in client.gather(futures) for row in batch]
+        batches = _batches(points, client)
+        futures = [client.submit(run_points, shared, [points[i] for i in batch], pure=False,
+                                 **options) for batch in batches]
+        rows = [None] * len(points)
+        for batch, done in zip(batches, client.gather(futures)):
+            for i, row in zip(batch, done):
+                rows[i] = row
     frame = pandas.DataFrame(rows)
     names = list(points[0]) if points else []
     columns = MAP_COLUMNS if isinstance(model, _graftal.MapModel) else COLUMNS

@@ -38,3 +38,23 @@ def test_sweep_on_a_local_cluster(root):
     assert remote["modules"].tolist() == here["modules"].tolist()
     assert remote["modules"].nunique() > 1  # stochastic: the seeds grow different bushes
     assert all(png.startswith(b"\x89PNG") for png in remote["png"])
+
+
+def test_batches_deal_runs_of_shared_constants_round_the_tasks():
+    from graftal import _sweep
+
+    class TwoThreads:
+        def nthreads(self):
+            return {"w1": 1, "w2": 1}
+
+    points = _sweep.grid_points({"R2": [0.5 + k / 100 for k in range(40)], "seed": range(3)})
+    batches = _sweep._batches(points, TwoThreads())
+    assert len(batches) == 4  # two a worker thread
+    assert sorted(i for b in batches for i in b) == list(range(len(points)))
+    # The seeds of one plant stay in one task: each task reads each of its models once.
+    for batch in batches:
+        keys = [_sweep._constants(points[i]) for i in batch]
+        assert len(set(keys)) == len(keys) // 3
+    # The grid's last (say, most expensive) quarter is shared by every task.
+    last = set(range(len(points) * 3 // 4, len(points)))
+    assert all(len(last.intersection(b)) >= 6 for b in batches)
