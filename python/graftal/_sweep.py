@@ -184,11 +184,11 @@ def sweep(model, grid, client=None, *, steps=None, geometry=True, export=None, s
     if client is None:
         rows = run_points(model, points, **options)
     else:
-        # The model is sent once; every task refers to it. Each task derives a batch of
-        # consecutive points, in grid order.
-        shared = client.scatter(model, broadcast=True)
+        # A model pickles as its source (a path, or its text with its overrides): it goes
+        # with each task, which costs less than scattering it first, a round trip to every
+        # worker before any work starts.
         batches = _batches(points, client)
-        futures = [client.submit(run_points, shared, [points[i] for i in batch], pure=False,
+        futures = [client.submit(run_points, model, [points[i] for i in batch], pure=False,
                                  **options) for batch in batches]
         rows = [None] * len(points)
         for batch, done in zip(batches, client.gather(futures)):
