@@ -27,6 +27,7 @@ set(GRAFTAL_WEB_SOURCES
   src/core/atomic_file.cpp src/core/destination.cpp src/core/file_format.cpp
   src/core/cancellation.cpp src/core/music_scale.cpp src/core/xml_text.cpp
   src/core/file_reading.cpp src/core/thread_pool.cpp src/core/number_chars.cpp
+  src/core/freed_memory.cpp
   # lang (the limited preprocessor in place of mcpp)
   src/lang/expression_compiler.cpp src/lang/expression_vm.cpp src/lang/expression_builtins.cpp
   src/lang/expression_printf.cpp src/lang/source_text.cpp src/lang/module_lexer.cpp
