@@ -15,8 +15,9 @@
 namespace graftal::testing {
 
 // Rewrites `start` for `steps` steps with the generic path alone and, for each of
-// `threads`, with the engine as derivations use it, and expects the same modules (and the
-// same doubles) after every step. When `contextPath` is given, expects the engine to take
+// `threads`, with the engine as derivations use it (step(), and stepConsuming(), which may
+// write the context path's choices over the string it rewrites), and expects the same
+// modules (and the same doubles) after every step. When `contextPath` is given, expects the engine to take
 // (or not take) the single-module context path. Returns the last string.
 inline ModuleString expectSameAsGenericPath(const LSystem& ls, const ModuleString& start, int steps,
                                             const std::string& what,
@@ -32,19 +33,25 @@ inline ModuleString expectSameAsGenericPath(const LSystem& ls, const ModuleStrin
         expected.push_back(next);
     }
     for (unsigned t : threads) {
-        RewritingEngine engine(ls, ls.productions, ls.seed, t);
-        if (contextPath) {
-            EXPECT_EQ(engine.usesContextPath(), *contextPath) << what;
-        }
-        ModuleString s = start;
-        for (int k = 1; k <= steps; ++k) {
-            engine.step(s, next, k, ls.tableForStep(k), noLimit);
-            std::swap(s, next);
-            if (!(s == expected[static_cast<std::size_t>(k)])) {
-                ADD_FAILURE() << what << ": step " << k << " with " << t << " threads (" << s.size()
-                              << " modules, expected "
-                              << expected[static_cast<std::size_t>(k)].size() << ")";
-                break;
+        for (bool consuming : {false, true}) {
+            RewritingEngine engine(ls, ls.productions, ls.seed, t);
+            if (contextPath) {
+                EXPECT_EQ(engine.usesContextPath(), *contextPath) << what;
+            }
+            ModuleString s = start;
+            for (int k = 1; k <= steps; ++k) {
+                if (consuming)
+                    engine.stepConsuming(s, next, k, ls.tableForStep(k), noLimit);
+                else
+                    engine.step(s, next, k, ls.tableForStep(k), noLimit);
+                std::swap(s, next);
+                if (!(s == expected[static_cast<std::size_t>(k)])) {
+                    ADD_FAILURE() << what << ": step " << k << " with " << t << " threads"
+                                  << (consuming ? ", consuming" : "") << " (" << s.size()
+                                  << " modules, expected "
+                                  << expected[static_cast<std::size_t>(k)].size() << ")";
+                    break;
+                }
             }
         }
     }

@@ -150,6 +150,33 @@ TEST(Derivation, MemoryLimitRefusesBeforeAllocating) {
     EXPECT_EQ(d.current().size(), 100000u) << "a refused step leaves the string as it was";
 }
 
+// The context path notes its choices over the string it rewrites: a step the limit refuses
+// must give the string back as it was, module for module, also on several threads.
+TEST(Derivation, ARefusedContextStepLeavesTheStringAsItWas) {
+    LSystem ls = parse(
+        "Lsystem: 1\naxiom: A[B]AB\nignore: +\nA < B --> [+A]B\nB > A --> AB\n"
+        "A --> BA\nendlsystem\n");
+    for (unsigned threads : {1u, 3u}) {
+        DerivationOptions o;
+        o.threads = threads;
+        Derivation grown(ls, o);
+        int steps = 0;
+        while (grown.current().size() < 300000) {
+            grown.step();
+            ++steps;
+        }
+        const ModuleString before = grown.current();
+        const std::size_t next = derive(ls, steps + 1).size();
+        o.memoryLimit = next - 1;  // one byte a module: the next string does not fit
+        Derivation d(ls, o);
+        d.run(steps);
+        ASSERT_TRUE(d.current() == before);
+        EXPECT_THROW(d.step(), Error);
+        EXPECT_TRUE(d.current() == before) << threads << " threads: the string was changed";
+        EXPECT_EQ(d.stepsDone(), steps);
+    }
+}
+
 TEST(Derivation, SameResultForAnyThreadCount) {
     const char* systems[] = {
         "Lsystem: 1\naxiom: F+F+F+F\nF --> F+F-F-FF+F+F-F\nendlsystem\n",

@@ -116,6 +116,40 @@ ContextRewriter::ContextRewriter(const LSystem& ls, const std::vector<Production
             std::copy(resultSymbols_.begin() + resultStart_[r - 1],
                       resultSymbols_.begin() + resultStart_[r], padded_.begin() + r * kPadded);
     }
+    // The in-place codes: every symbol is its own copy, and each result takes a byte no
+    // symbol uses; a result is one production's, so its code also names the module it
+    // rewrote.
+    symbolCount_ = static_cast<std::uint32_t>(symbols);
+    if (symbolCount_ + resultLength_.size() - 1 <= 256) {
+        codesFit_ = true;
+        decode_.resize(256);
+        codeLength_.assign(256, 1);
+        codeStart_.assign(257, 0);
+        std::vector<Symbol> predecessorOf(resultLength_.size(), 0);
+        for (std::size_t k = 0; k < productions.size(); ++k)
+            if (resultOfProduction_[k] != 0)
+                predecessorOf[resultOfProduction_[k]] = productions[k].predecessor[0].symbol;
+        for (std::uint32_t code = 0; code < 256; ++code) {
+            const std::uint32_t r = code >= symbolCount_ ? code - symbolCount_ + 1 : 0;
+            if (r == 0 || r >= resultLength_.size()) {
+                decode_[code] = static_cast<Symbol>(code);
+                codeSymbols_.push_back(static_cast<Symbol>(code));
+            } else {
+                decode_[code] = predecessorOf[r];
+                codeLength_[code] = resultLength_[r];
+                codeSymbols_.insert(codeSymbols_.end(), resultSymbols_.begin() + resultStart_[r - 1],
+                                    resultSymbols_.begin() + resultStart_[r]);
+            }
+            codeStart_[code + 1] = static_cast<std::uint32_t>(codeSymbols_.size());
+        }
+        if (!padded_.empty()) {
+            codePadded_.assign(256 * kPadded, 0);
+            for (std::uint32_t code = 0; code < 256; ++code)
+                std::copy(codeSymbols_.begin() + codeStart_[code],
+                          codeSymbols_.begin() + codeStart_[code + 1],
+                          codePadded_.begin() + code * kPadded);
+        }
+    }
     usable_ = true;
 }
 
@@ -207,7 +241,9 @@ template <bool Unknown, bool Tally>
 void ContextRewriter::scan(const Symbol* in, std::size_t b, std::size_t e, Scan& st,
                            const SymbolInfo* info, std::uint64_t step) {
     const std::uint32_t* cells = cells_.data();
-    std::uint8_t* slot = choice_.data();
+    std::uint8_t* slot = slots_;
+    const std::uint32_t shift = shift_, keep = keep_;
+    const Symbol* decode = decode_.empty() ? nullptr : decode_.data();
     std::uint64_t* tally = Tally ? st.tally.data() : nullptr;
     const std::uint64_t last = n_;
     // Counts the final choice `cell` of the module in slot k.
@@ -233,7 +269,11 @@ void ContextRewriter::scan(const Symbol* in, std::size_t b, std::size_t e, Scan&
         if constexpr (Tally) {
             if (waiting <= last) note(waiting, cell);
         } else {
-            slot[waiting] = static_cast<std::uint8_t>(cell);
+            // A copy written in place is the module's own symbol, which the provisional code
+            // still names.
+            const std::uint32_t r = cell & 0xFFu;
+            slot[waiting] = static_cast<std::uint8_t>(
+                r ? r + shift : (keep ? decode[slot[waiting]] : 0u));
         }
         count += cell >> 8;
     };
@@ -252,7 +292,10 @@ void ContextRewriter::scan(const Symbol* in, std::size_t b, std::size_t e, Scan&
             if (cell & kGroup) [[unlikely]]
                 cell = pick(cell, step, i);
         }
-        if constexpr (!Tally) slot[i + 1] = static_cast<std::uint8_t>(cell);
+        if constexpr (!Tally) {
+            const std::uint32_t r = cell & 0xFFu;
+            slot[i + 1] = static_cast<std::uint8_t>(r ? r + shift : in[i] & keep);
+        }
         if (kind < kIgnoredKind) {
             settle(kind);
             if (waits) {
@@ -350,12 +393,11 @@ void ContextRewriter::decide(std::uint64_t step, std::uint64_t slot, std::uint32
     std::size_t c = static_cast<std::size_t>(
         std::upper_bound(bounds_.begin(), bounds_.end(), position) - bounds_.begin() - 1);
     scans_[c].count += cell >> 8;
-    if (tally_) {
-        const std::uint32_t r = cell & 0xFFu;
+    const std::uint32_t r = cell & 0xFFu;
+    if (tally_)
         ++scans_[c].tally[r ? r : kCopiedTally + in_[position]];
-    } else {
-        choice_[slot] = static_cast<std::uint8_t>(cell);
-    }
+    else
+        slots_[slot] = static_cast<std::uint8_t>(r ? r + shift_ : (keep_ ? decode_[slots_[slot]] : 0u));
 }
 
 // Scans the chunks in parallel, then settles in chunk order what each left open. False
@@ -397,6 +439,7 @@ bool ContextRewriter::scanChunksAs(std::size_t n, std::size_t chunks, std::uint6
     std::vector<Level> pushed;
     for (std::size_t c = 1; c < chunks; ++c) {
         const Scan& st = scans_[c];
+        // (A deferred module was noted as its own symbol: in place, the string still has it.)
         for (const Deferred& d : st.deferred)
             decide(step, d.slot, infoBase(info[in[d.slot - 1]]) + resolve(d.left), d.right);
         for (const auto& [k, right] : st.settled)
@@ -439,11 +482,60 @@ std::size_t ContextRewriter::choose(const ModuleString& cur, int stepNumber, int
     }
     choice_.resize(n + 1 + kNobodyStride * chunks);
     tally_ = false;
+    inPlace_ = false;
+    slots_ = choice_.data();
+    shift_ = 0;
+    keep_ = 0;
     const auto step = static_cast<std::uint64_t>(stepNumber);
     if (!scanChunks(n, chunks, step)) scanChunks(n, 1, step);
     std::size_t total = 0;
     for (const auto& s : scans_) total += s.count;
     return total;
+}
+
+std::size_t ContextRewriter::chooseInPlace(ModuleString& cur, int stepNumber, int table,
+                                           std::size_t chunks) {
+    const std::size_t n = cur.size();
+    chunks = prepare(cur, table, chunks);
+    auto& symbols = cur.rawSymbols();
+    // The chunks' "nobody" slots past the string, for the time of the scan (uninitialised
+    // bytes, within the room the string's buffer usually has).
+    symbols.resize(n + 1 + kNobodyStride * chunks);
+    in_ = symbols.data();
+    tally_ = false;
+    inPlace_ = true;
+    // Slot k is module k - 1 (the scan's slots count from 1).
+    slots_ = symbols.data() - 1;
+    shift_ = symbolCount_ - 1;
+    keep_ = 0xFFu;
+    const auto step = static_cast<std::uint64_t>(stepNumber);
+    if (!scanChunks(n, chunks, step)) {
+        // Every module holds a code now: the string again, then one chunk.
+        symbols.resize(n);
+        restore(cur);
+        symbols.resize(n + 1 + kNobodyStride);
+        in_ = symbols.data();
+        slots_ = symbols.data() - 1;
+        scanChunks(n, 1, step);
+    }
+    symbols.resize(n);
+    std::size_t total = 0;
+    for (const auto& s : scans_) total += s.count;
+    return total;
+}
+
+bool ContextRewriter::fitsInPlace(ModuleString& cur, std::size_t chunks) const {
+    const std::size_t room = cur.size() + 1 + kNobodyStride * std::max<std::size_t>(chunks, 1);
+    return codesFit_ && room <= cur.rawSymbols().capacity();
+}
+
+void ContextRewriter::restore(ModuleString& cur) const {
+    Symbol* s = cur.rawSymbols().data();
+    const Symbol* decode = decode_.data();
+    forEachChunk(cur.size(), chunkCountFor(cur.size(), chunks_),
+                 [&](std::size_t, std::size_t b, std::size_t e) {
+                     for (std::size_t i = b; i < e; ++i) s[i] = decode[s[i]];
+                 });
 }
 
 std::size_t ContextRewriter::chooseAndCount(const ModuleString& cur, int stepNumber, int table,
@@ -471,11 +563,49 @@ std::size_t ContextRewriter::chooseAndCount(const ModuleString& cur, int stepNum
     return total;
 }
 
+// The successors the codes written in place name: every code, a copy included, is a row
+// of the code tables, so the loop does not look at the string's own symbols.
+void ContextRewriter::writeCodes(const std::uint8_t* codes, std::size_t n,
+                                 const std::vector<std::size_t>& offsets,
+                                 std::vector<std::uint32_t>& applied, Symbol* out) const {
+    const std::uint32_t* length = codeLength_.data();
+    const std::uint32_t* start = codeStart_.data();
+    const Symbol* successors = codeSymbols_.data();
+    const Symbol* padded = codePadded_.empty() ? nullptr : codePadded_.data();
+    const std::uint32_t first = symbolCount_;
+    forEachChunk(n, chunks_, [&](std::size_t c, std::size_t b, std::size_t e) {
+        const std::uint8_t* pick = codes;
+        const Symbol* fixed = padded;
+        Symbol* o = out + offsets[c];
+        Symbol* end = o + scans_[c].count;
+        std::uint32_t any = 0;
+        std::size_t i = b;
+        if (fixed) {
+            for (; i < e && o + kPadded <= end; ++i) {
+                const std::uint32_t code = pick[i];
+                std::memcpy(o, fixed + code * kPadded, kPadded * sizeof(Symbol));
+                o += length[code];
+                any |= code >= first;
+            }
+        }
+        for (; i < e; ++i) {
+            const std::uint32_t code = pick[i];
+            any |= code >= first;
+            for (std::uint32_t k = start[code]; k < start[code + 1]; ++k) *o++ = successors[k];
+        }
+        applied[c] = any;
+    });
+}
+
 bool ContextRewriter::write(const ModuleString& cur, Symbol* out) {
     std::size_t n = cur.size(), chunks = chunks_;
     std::vector<std::size_t> offsets(chunks, 0);
     std::vector<std::uint32_t> applied(chunks, 0);
     for (std::size_t c = 1; c < chunks; ++c) offsets[c] = offsets[c - 1] + scans_[c - 1].count;
+    if (inPlace_) {
+        writeCodes(cur.symbols().data(), n, offsets, applied, out);
+        return std::any_of(applied.begin(), applied.end(), [](std::uint32_t a) { return a != 0; });
+    }
     const Symbol* in = cur.symbols().data();
     const std::uint8_t* choice = choice_.data() + 1;
     const std::uint32_t* start = resultStart_.data();

@@ -31,8 +31,19 @@ class ContextRewriter {
     // Chooses a successor for every module of `cur`, split into `chunks` parallel chunks,
     // and returns the length of the next string. The choice does not depend on `chunks`.
     std::size_t choose(const ModuleString& cur, int stepNumber, int table, std::size_t chunks);
-    // Writes the successors picked by the last choose() to `out`, which holds as many
-    // symbols as choose() returned. Returns false when every module was copied unchanged.
+    // The same, with each choice written over the module it is for, as a code that still
+    // names the module (its symbol for a copy, past the symbols a production's own code):
+    // no byte per module beside the string. Until write() or restore(), `cur` holds codes.
+    // Only when codesFit().
+    std::size_t chooseInPlace(ModuleString& cur, int stepNumber, int table, std::size_t chunks);
+    // Whether chooseInPlace() applies: the codes fit in a byte, and the string's buffer has
+    // room for the scan's slots past its end (a byte a chunk) without moving.
+    bool fitsInPlace(ModuleString& cur, std::size_t chunks) const;
+    // Turns the codes chooseInPlace() wrote back into the string (a step that fails).
+    void restore(ModuleString& cur) const;
+    // Writes the successors picked by the last choose() or chooseInPlace() to `out`, which
+    // holds as many symbols as it returned. Returns false when every module was copied
+    // unchanged.
     bool write(const ModuleString& cur, Symbol* out);
     // choose() in a pass that notes no choice, counting what write() would write: the modules of the next string
     // by symbol into `counts` (one per symbol), and its length returned. The string of the
@@ -100,6 +111,9 @@ class ContextRewriter {
     static void settleLater(Scan& st, std::uint64_t waiting, std::uint32_t row,
                             std::uint32_t right);
     bool scanChunks(std::size_t n, std::size_t chunks, std::uint64_t step);
+    void writeCodes(const std::uint8_t* codes, std::size_t n,
+                    const std::vector<std::size_t>& offsets, std::vector<std::uint32_t>& applied,
+                    Symbol* out) const;
     template <bool Tally>
     bool scanChunksAs(std::size_t n, std::size_t chunks, std::uint64_t step);
     std::size_t prepare(const ModuleString& cur, int table, std::size_t chunks);
@@ -125,6 +139,20 @@ class ContextRewriter {
 
     // Per module the chosen result, in slots 1..n, then the chunks' "nobody" slots.
     std::vector<std::uint8_t, UninitializedAllocator<std::uint8_t>> choice_;
+    // Where the scan writes: choice_, or the string itself (slot k is module k - 1), and how
+    // a result r is written there: r + shift_ (r > 0), or the module's own symbol masked
+    // with keep_ (0 in choice_, 0xFF in the string).
+    std::uint8_t* slots_ = nullptr;
+    std::uint32_t shift_ = 0, keep_ = 0;
+    bool inPlace_ = false;
+    // In-place codes: below symbolCount_ a copy of that symbol, from there on result
+    // code - symbolCount_ + 1. decode_ gives a code's module back; codeLength_, codeStart_
+    // and codeSymbols_ what it writes, codePadded_ the same padded to kPadded when all fit.
+    bool codesFit_ = false;
+    std::uint32_t symbolCount_ = 0;
+    std::vector<Symbol> decode_;
+    std::vector<std::uint32_t> codeLength_, codeStart_;
+    std::vector<Symbol> codeSymbols_, codePadded_;
     std::uint64_t n_ = 0, nobody_ = 1;  // the length of the last string; a nobody slot
     const Symbol* in_ = nullptr;        // the string of the last choose()
     std::size_t table_ = 0;

@@ -238,13 +238,14 @@ void Derivation::step() {
     int stepNumber = steps_ + 1;
     // Cut first, into a scratch string, so that a step that fails leaves current_ intact.
     ModuleString pruned;
-    const ModuleString& source =
+    ModuleString& source =
         lsystem_.usesCut() && !cpfgRandom_ && pruneCuts(*current_, pruned) ? pruned : *current_;
     state_[0] = stepNumber;
     if (!lsystem_.startEachBlock.empty())
         rules_->runBlock(lsystem_.startEachBlock, nullptr, stepNumber, 0);
-    rules_->step(source, *next_, stepNumber, lsystem_.tableForStep(stepNumber),
-                 options_.memoryLimit);
+    // The string before the step is not kept once the step succeeds.
+    rules_->stepConsuming(source, *next_, stepNumber, lsystem_.tableForStep(stepNumber),
+                          options_.memoryLimit);
     options_.cancel.check();
     std::swap(current_, next_);
     ++steps_;

@@ -270,6 +270,24 @@ bool RewritingEngine::stepFast(const ModuleString& cur, ModuleString& next, int 
     return true;
 }
 
+bool RewritingEngine::stepConsuming(ModuleString& cur, ModuleString& next, int stepNumber,
+                                    int table, std::size_t memoryLimit) {
+    const std::size_t chunks = chunkCount(cur.size());
+    const bool inPlace = !sequential_ && !genericOnly_ && !cur.hasParameters() && !fast_ &&
+                         context_ && context_->fitsInPlace(cur, chunks);
+    if (!inPlace) return step(cur, next, stepNumber, table, memoryLimit);
+    table = std::clamp(table, 0, static_cast<int>(tableCount_) - 1);
+    const std::size_t total = context_->chooseInPlace(cur, stepNumber, table, chunks);
+    try {
+        checkLimit(stepNumber, total, 0, 0, cur, memoryLimit);
+        prepareOutput(cur, next, total, 0, false, 0, memoryLimit);
+    } catch (...) {
+        context_->restore(cur);
+        throw;
+    }
+    return context_->write(cur, next.rawSymbols().data());
+}
+
 bool RewritingEngine::stepContext(const ModuleString& cur, ModuleString& next, int stepNumber,
                                   int table, std::size_t limit) {
     std::size_t total = context_->choose(cur, stepNumber, table, chunkCount(cur.size()));

@@ -32,6 +32,11 @@ class RewritingEngine {
     bool step(const ModuleString& cur, ModuleString& next, int stepNumber, int table,
               std::size_t memoryLimit, const std::vector<std::uint8_t>* activeIn = nullptr,
               std::vector<std::uint8_t>* activeOut = nullptr);
+    // step() for a caller done with `cur` once the step succeeds: the context path may then
+    // note its choices over `cur` itself instead of beside it (a byte a module less at the
+    // step's peak). Afterwards `cur` holds no string; if the step throws, it is as it was.
+    bool stepConsuming(ModuleString& cur, ModuleString& next, int stepNumber, int table,
+                       std::size_t memoryLimit);
 
     // The L-system's state (LSystem::stateNames) that blocks and expressions read and
     // write, and where printf writes. Without it, expressions that need them fail.
