@@ -258,3 +258,46 @@ TEST(Context, HomomorphismWithContext) {
     EXPECT_EQ(s.toString(ls.symbols), "S(1)S(1)A");
     EXPECT_EQ(applyHomomorphism(ls, s).toString(ls.symbols), "F(1)[+F(0.5)]F(2)A");
 }
+
+// Random 2L-systems: contexts on either side or both, symbols ignored or not, successors
+// with brackets, deletions and stochastic choices; each derived on a random string by the
+// context path (holding its choices beside the string, and writing them over it) on 1, 2,
+// 3 and 7 threads, and by the generic path.
+TEST(ContextFastPath, RandomSystemsAgreeWithTheGenericPath) {
+    std::mt19937 rng(7);
+    const std::string letters = "ABC+-";
+    auto letter = [&] { return letters[rng() % letters.size()]; };
+    int usedContextPath = 0;
+    for (int k = 0; k < 24; ++k) {
+        std::string text = "Lsystem: 1\nseed: " + std::to_string(k) + "\naxiom: A\n";
+        if (rng() % 2) text += "ignore: +-\n";
+        const int productions = 2 + static_cast<int>(rng() % 4);
+        for (int p = 0; p < productions; ++p) {
+            std::string left, right, successor;
+            if (rng() % 3) left = std::string(1, letter()) + " < ";
+            if (rng() % 3) right = std::string(" > ") + letter();
+            const int length = static_cast<int>(rng() % 5);  // 0: the module is deleted
+            for (int s = 0; s < length; ++s) {
+                const auto r = rng() % 10;
+                successor += r == 0 ? std::string("[") + letter() + "]" : std::string(1, letter());
+            }
+            text += left + letter() + right + " --> " + (successor.empty() ? "*" : successor);
+            if (rng() % 4 == 0) text += " : " + std::to_string(1 + rng() % 3);
+            text += "\n";
+        }
+        text += "endlsystem\n";
+        LSystem ls;
+        try {
+            ls = parse(text);
+        } catch (const Error&) {
+            continue;  // a random file may mix probabilities in ways the language refuses
+        }
+        RewritingEngine probe(ls, ls.productions, ls.seed, 2);
+        usedContextPath += probe.usesContextPath();
+        // Past 65536 modules, so that the string is split into chunks.
+        const ModuleString start = symbolsOf(randomString(rng, 70000, letters, rng() % 2 == 0));
+        expectSameAsGenericPath(ls, start, 2, "random system " + std::to_string(k) + ":\n" + text,
+                                probe.usesContextPath());
+    }
+    EXPECT_GE(usedContextPath, 12) << "too few random systems took the context path";
+}
