@@ -2,7 +2,9 @@
 // turtle measures, for every example that can be streamed and any thread count.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
+#include <thread>
 
 #include "graftal/output/string_text_writer.hpp"
 #include "graftal/pipeline/export.hpp"
@@ -222,5 +224,36 @@ TEST(ParallelStream, ErrorsOfTheConsumerStopTheWorkers) {
                          options),
                      Error)
             << c.name;
+    }
+}
+
+// A first chunk far larger than the others (C triples at every step, A grows as the
+// Fibonacci words), chunks of many blocks, and a consumer slower than the workers: while
+// the consumer still reads the first chunk, the other workers fill all the blocks they may
+// queue and wait; the first chunk's worker must never wait for them. The string is the held
+// one, in order.
+TEST(ParallelStream, WorkersAheadOfASlowConsumerWaitAndGoOn) {
+    const LSystem ls = graftal::testing::parse("Lsystem: 1\naxiom: C" + std::string(16383, 'A') +
+                                               "\nC --> CCC\nA --> AB\nB --> A\nendlsystem\n");
+    ASSERT_TRUE(streamsInParallel(ls));
+    // On two threads: 64 chunks; the first 4.8 M modules (146 blocks), each other one
+    // 256 As of 987 modules (7 blocks or more), nine of them in the window.
+    const ModuleString held = derive(ls, 14);
+    ASSERT_GT(held.size(), 20000000u);
+    for (unsigned threads : {2u, 3u}) {
+        DerivationOptions options;
+        options.threads = threads;
+        ModuleString all;
+        std::size_t blocks = 0;
+        streamDerivationParallel(
+            ls, 14, nullptr,
+            [&](const StreamBlock& b) {
+                all.append(b.modules);
+                if (++blocks % 2 == 0) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+            },
+            options);
+        EXPECT_GT(blocks, 600u);
+        EXPECT_TRUE(all == held) << threads << " threads: " << all.size() << " modules, expected "
+                                 << held.size();
     }
 }
