@@ -123,14 +123,14 @@ void Parser::parseProduction(const SourceLine& line, Arrow arrow) {
     if (condColon != std::string_view::npos) {
         // `: { pre } condition { post }`, each part optional.
         std::size_t condFrom = condColon + 1, condTo = lhs.size();
-        std::size_t first = lhs.find_first_not_of(" \t\r\f\v", condFrom);
-        if (first != std::string_view::npos && lhs[first] == '{') {
-            std::size_t close = matchingBrace(lhs, first);
+        std::size_t pre = lhs.find_first_not_of(" \t\r\f\v", condFrom);
+        if (pre != std::string_view::npos && lhs[pre] == '{') {
+            std::size_t close = matchingBrace(lhs, pre);
             if (close == std::string_view::npos) {
-                diags_.error(at(line, first), "expected '}' to close this block");
+                diags_.error(at(line, pre), "expected '}' to close this block");
                 return;
             }
-            if (!parseBlockAt(line, first, close, blockScope, prod.preBlock)) return;
+            if (!parseBlockAt(line, pre, close, blockScope, prod.preBlock)) return;
             condFrom = close + 1;
         }
         if (std::size_t open = lhs.find('{', condFrom); open != std::string_view::npos) {
