@@ -64,7 +64,9 @@ TEST(NumberChars, FallbackReadsWhatFromCharsReads) {
         const auto y = std::from_chars(text, text + n, b);
         EXPECT_EQ(x.ptr - text, y.ptr - text) << text;
         EXPECT_EQ(x.ec, y.ec) << text;
-        if (x.ec == std::errc() && !std::isnan(a)) EXPECT_EQ(a, b) << text;
+        if (x.ec == std::errc() && !std::isnan(a)) {
+            EXPECT_EQ(a, b) << text;
+        }
     }
     double v = 0;
     EXPECT_EQ(graftal::strtodNumberFromChars("+1", "+1" + 2, v).ec, std::errc::invalid_argument);

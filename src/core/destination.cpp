@@ -100,7 +100,9 @@ class MemoryFile {
     }
 
   private:
+#ifndef __EMSCRIPTEN__
     int fd_ = -1;
+#endif
     fs::path path_;
 };
 

@@ -50,7 +50,8 @@ std::to_chars_result shortest(char* first, char* last, Real v) {
         // Scientific: d[.ddd]e±XX (at least two exponent digits, as printf writes them).
         std::string scientific = digits.substr(0, 1);
         if (n > 1) scientific += "." + digits.substr(1);
-        char exponentText[8];
+        // A double's exponent has at most three digits; the room is for any int's.
+        char exponentText[16];
         std::snprintf(exponentText, sizeof exponentText, "e%c%02d", e < 0 ? '-' : '+',
                       e < 0 ? -e : e);
         scientific += exponentText;

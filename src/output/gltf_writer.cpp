@@ -36,8 +36,10 @@ namespace {
 using nlohmann::json;
 
 constexpr double kRoughness = 0.8;
+#ifndef GRAFTAL_NO_MESHOPTIMIZER
 // Mantissa bits of compressed positions (see compressedPositions).
 constexpr int kPositionBits = 16;
+#endif
 // The GLB header and chunk lengths are 32-bit; leave room for the JSON chunk.
 constexpr std::size_t kMaxBinaryBytes = std::numeric_limits<std::uint32_t>::max() - (1u << 24);
 

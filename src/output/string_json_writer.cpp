@@ -34,7 +34,6 @@ struct JsonLines {
                 ", \"params\": [";
     }
     std::vector<std::string> heads;
-    static constexpr std::string_view kTail = "]}";
 };
 
 std::string headerText(const StringJsonHeader& header) {
