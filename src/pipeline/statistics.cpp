@@ -91,33 +91,25 @@ ModelStatistics measured(const Model& model, const DeriveRequest& request, bool 
     if (!geometry && steps > 0) {
         // Symbol counts alone: the last step is counted without being written, which
         // halves the memory (and the fresh pages) the derivation needs.
-        std::vector<std::uint64_t> counts;
-        try {
+        std::vector<std::uint64_t> counts = suggestingStream(model, request, true, [&] {
             Derivation d(model, options);
             d.run(steps - 1);
-            counts = d.countNextStep();
-            if (counts.empty()) {
+            std::vector<std::uint64_t> next = d.countNextStep();
+            if (next.empty()) {
                 d.step();
                 d.finish();
-                counts = countSymbols(d.current(), model.lsystem.symbols.size(), request.threads);
+                next = countSymbols(d.current(), model.lsystem.symbols.size(), request.threads);
             }
-        } catch (const Error& e) {
-            if (auto suggested = withStreamRemedy(e, model, request, true)) throw *suggested;
-        throw;
-        }
+            return next;
+        });
         for (std::uint64_t c : counts) stats.modules += c;
         stats.symbolCounts = std::move(counts);
         return stats;
     }
     DeriveRequest exact = request;
     exact.steps = steps;
-    Derived derivedModel;
-    try {
-        derivedModel = derived(model, exact);
-    } catch (const Error& e) {
-        if (auto suggested = withStreamRemedy(e, model, request, true)) throw *suggested;
-        throw;
-    }
+    const Derived derivedModel =
+        suggestingStream(model, request, true, [&] { return derived(model, exact); });
     const ModuleString& modules = derivedModel.modules;
     stats.modules = modules.size();
     const bool homomorphism = !model.lsystem.homomorphism.empty();

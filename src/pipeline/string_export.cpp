@@ -109,13 +109,7 @@ ExportResult writeDerivedString(const ExportFormat& format, const Model& model,
     }
     DeriveRequest derive = request;
     derive.steps = steps;
-    Derived d;
-    try {
-        d = derived(model, derive);
-    } catch (const Error& e) {
-        if (auto suggested = withStreamRemedy(e, model, request, canStream)) throw *suggested;
-        throw;
-    }
+    Derived d = suggestingStream(model, request, canStream, [&] { return derived(model, derive); });
     if (request.homomorphism)
         d.modules = applyHomomorphism(model.lsystem, d.modules, derivationOptions(model, request));
     request.cancel.check();

@@ -136,6 +136,19 @@ bool shouldStream(const Model& model, int steps, const DeriveRequest& request, b
 std::optional<Error> withStreamRemedy(const Error& error, const Model& model,
                                       const DeriveRequest& request, bool canStream);
 
+// Returns work() (a held derivation for `request`); what it throws is rethrown, with
+// Remedy::Stream added where withStreamRemedy() adds it.
+template <class Work>
+auto suggestingStream(const Model& model, const DeriveRequest& request, bool canStream,
+                      Work&& work) {
+    try {
+        return work();
+    } catch (const Error& e) {
+        if (auto suggested = withStreamRemedy(e, model, request, canStream)) throw *suggested;
+        throw;
+    }
+}
+
 // The options of a derivation made for a request (its query resolver places the turtle of
 // the model's view).
 DerivationOptions derivationOptions(const Model& model, const DeriveRequest& request);
