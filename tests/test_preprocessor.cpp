@@ -48,6 +48,21 @@ std::string doublingMacros(int levels) {
     return s;
 }
 
+// A model whose 40 productions each use A8 (256 modules), and options capping its
+// preprocessed text at 8 KiB, which it passes after line 11.
+std::string manyUsesOfA8() {
+    std::string text = doublingMacros(8) + "Lsystem: 1\naxiom: X\n";
+    for (int i = 0; i < 40; ++i) text += "X --> A8\n";
+    return text + "\nendlsystem\n";
+}
+
+PreprocessOptions cappedAt8KiB() {
+    PreprocessOptions o;
+    o.fileName = "big.l";
+    o.maxOutputBytes = 8 << 10;
+    return o;
+}
+
 }  // namespace
 
 TEST(Preprocessor, FunctionLikeMacrosExpandInSuccessorsAndConditions) {
@@ -202,15 +217,9 @@ TEST(Preprocessor, AMacroThatDoublesTwentyFiveTimesIsRefusedAtItsUse) {
 TEST(Preprocessor, ThePreprocessedSizeIsCapped) {
     // Each use of A8 is 256 modules; many uses pass a small cap, reported at the line that
     // crosses it.
-    std::string text = doublingMacros(8) + "Lsystem: 1\naxiom: X\n";
-    for (int i = 0; i < 40; ++i) text += "X --> A8\n";
-    text += "\nendlsystem\n";
-    PreprocessOptions o;
-    o.fileName = "big.l";
-    o.maxOutputBytes = 8 << 10;
     SourceText src;
     DiagnosticList diags;
-    EXPECT_FALSE(preprocessSource(text, o, src, diags));
+    EXPECT_FALSE(preprocessSource(manyUsesOfA8(), cappedAt8KiB(), src, diags));
     ASSERT_TRUE(diags.hasErrors());
     const Diagnostic& d = diags.items().back();
     EXPECT_EQ(d.location.file, "big.l");
@@ -278,15 +287,9 @@ TEST(Preprocessor, RunsAfterAStoppedRunAndInAForkedProcessReadTheirOwnDefines) {
         EXPECT_EQ(derived(parseLSystem("#define N 0\n" + model, o), 0),
                   "A(" + std::to_string(n) + ")");
     }
-    std::string big = doublingMacros(8) + "Lsystem: 1\naxiom: X\n";
-    for (int i = 0; i < 40; ++i) big += "X --> A8\n";
-    big += "\nendlsystem\n";
-    PreprocessOptions capped;
-    capped.fileName = "big.l";
-    capped.maxOutputBytes = 8 << 10;
     SourceText src;
     DiagnosticList diags;
-    EXPECT_FALSE(preprocessSource(big, capped, src, diags));
+    EXPECT_FALSE(preprocessSource(manyUsesOfA8(), cappedAt8KiB(), src, diags));
     EXPECT_EQ(derived(parse("#define N 7\n" + model), 0), "A(7)");
     const pid_t child = ::fork();
     if (child == 0) {
