@@ -75,7 +75,7 @@ inline constexpr std::size_t kParameterRoom = kNumberTextCapacity + 2;
 struct SymbolNames {
     explicit SymbolNames(const SymbolTable& table) {
         names.resize(kMaxSymbols);
-        shortNames.resize(table.size());
+        shortNames.resize(kMaxSymbols);
         for (std::size_t s = 0; s < table.size(); ++s) {
             names[s] = table.name(static_cast<Symbol>(s));
             if (names[s].size() <= kShort)
@@ -88,7 +88,7 @@ struct SymbolNames {
     // fixed-length copy (a few instructions, not a call).
     char* put(char* p, Symbol s) const {
         const std::string& name = names[s];
-        if (name.size() <= kShort && s < shortNames.size())
+        if (name.size() <= kShort)
             std::memcpy(p, shortNames[s].data(), kShort);
         else
             std::memcpy(p, name.data(), name.size());
