@@ -83,7 +83,7 @@ set(GRAFTAL_WEB_SOURCES
 # source of the layers is in one list or the other: scripts/web_sources.py checks it
 # (ctest: Web.SourceList), so that a new source file is not forgotten here.
 set(GRAFTAL_NATIVE_ONLY_SOURCES
-  src/lang/preprocessor.cpp
+  src/lang/preprocessor.cpp src/lang/mcpp_server.cpp src/lang/graftal_cpp_main.cpp
   src/music/lilypond_writer.cpp src/music/midi_writer.cpp src/music/music_file.cpp
   src/music/wav_writer.cpp
   src/output/animation_file.cpp src/output/cairo_writer.cpp

@@ -3,13 +3,16 @@
 // loader's own report, LD_DEBUG=libs), and a missing or broken plugin is an error that names
 // the format and the file looked for. A static build links the writers and has no plugins.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "process.hpp"
+#include "test_helpers.hpp"
 
 namespace {
 
@@ -79,6 +82,54 @@ TEST(Plugins, CommandsThatMakeNoPictureLoadNoHeavyLibrary) {
         for (const char* heavy : kHeavy)
             EXPECT_FALSE(loads(libraries, heavy)) << args << ": " << heavy;
     }
+}
+
+// This process's children, as the folders of /proc that describe them.
+std::vector<fs::path> children() {
+    std::vector<fs::path> found;
+    for (const auto& entry : fs::directory_iterator("/proc")) {
+        std::ifstream stat(entry.path() / "stat");
+        std::string line;
+        if (!std::getline(stat, line)) continue;
+        // pid (name) state ppid ...: the name may hold spaces and parentheses.
+        const std::size_t close = line.rfind(')');
+        if (close == std::string::npos) continue;
+        std::istringstream rest(line.substr(close + 1));
+        std::string state;
+        long parent = 0;
+        rest >> state >> parent;
+        if (parent == ::getpid()) found.push_back(entry.path());
+    }
+    return found;
+}
+
+TEST(Plugins, ThePreprocessorRunsAsASmallProgramOfItsOwnOrElseAsAFork) {
+    // A fork of a large host (Python, a Dask worker) would make its every page copy-on-write.
+    if (!pluginsBuilt()) GTEST_SKIP() << "a static build forks its preprocessor";
+    const std::string model = "#define N 3\nLsystem: 1\naxiom: A(N)\nendlsystem\n";
+    EXPECT_EQ(graftal::testing::derived(graftal::testing::parse(model), 0), "A(3)");
+    int programs = 0;
+    for (const fs::path& child : children()) {
+        std::error_code ec;
+        if (fs::read_symlink(child / "exe", ec).filename() != "graftal-cpp") continue;
+        ++programs;
+        // It maps libmcpp and libc, and none of graftal's libraries.
+        std::ifstream maps(child / "maps");
+        const std::string mapped{std::istreambuf_iterator<char>(maps), {}};
+        EXPECT_NE(mapped.find("libmcpp"), std::string::npos);
+        EXPECT_EQ(mapped.find("libgraftal"), std::string::npos);
+        EXPECT_EQ(mapped.find("libstdc++"), std::string::npos);
+    }
+    EXPECT_EQ(programs, 1) << "one child process runs graftal-plugins/graftal-cpp";
+
+    // Without the program (another plugin folder), the preprocessor is a fork: same result.
+    TempDir dir;
+    const fs::path file = dir.path() / "n.l";
+    std::ofstream(file) << model;
+    const RunResult r =
+        runWith("GRAFTAL_PLUGIN_DIR=" + dir.path().string(), "derive -n 0 " + file.string());
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.out, "A(3)\n");
 }
 
 TEST(Plugins, APngLoadsCairoThroughItsPlugin) {

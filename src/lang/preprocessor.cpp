@@ -14,21 +14,16 @@
 //
 // mcpp keeps its state in globals and cannot be stopped from outside once it runs, while a
 // macro such as `#define B A+A` nested a few dozen times expands without end in practice.
-// So it runs in a child process, forked once and kept for the next runs: the parent reads
+// So it runs in a child process, started once and kept for the next runs: the parent reads
 // its output through pipes, stops it when the output passes the size limit or the time
 // limit (the next run starts another), and the library's own globals never live in this
 // process. A mutex serialises the runs.
 #include "preprocessor.hpp"
 
-extern "C" {
-#include <mcpp_lib.h>
-}
-#include <elf.h>
 #include <fcntl.h>
-#include <link.h>
 #include <poll.h>
 #include <signal.h>
-#include <sys/mman.h>
+#include <spawn.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -49,6 +44,10 @@ extern "C" {
 #include <vector>
 
 #include "graftal/core/file_reading.hpp"
+#include "mcpp_server.hpp"
+#ifdef GRAFTAL_PREPROCESSOR_PROGRAM
+#include "../plugins/plugin_loader.hpp"
+#endif
 
 namespace graftal {
 
@@ -68,63 +67,6 @@ constexpr std::string_view kSlashShield = "\xEE\x80\x81";
 constexpr std::string_view kHashShield = "\xEE\x80\x82";
 
 std::mutex gMcppMutex;
-
-// libmcpp's macro lookup (look_prev) compares the stored names of a hash chain with the name
-// looked up by memcmp(stored, name, strlen(name) + 1): a stored name shorter than the one
-// looked up is read past its end, past its allocation when the macro's text is short too
-// (AddressSanitizer reports it; glibc's vectorised memcmp really reads those bytes). mcpp
-// only needs the sign of the first difference, and the stored name ends with its NUL, so
-// a comparison that stops at the first difference answers the same without reading past.
-// It is put in libmcpp's own PLT slot for memcmp: nothing else in the program changes.
-extern "C" int graftalMcppCompare(const void* a, const void* b, std::size_t n) {
-    const auto* x = static_cast<const unsigned char*>(a);
-    const auto* y = static_cast<const unsigned char*>(b);
-    for (std::size_t i = 0; i < n; ++i)
-        if (x[i] != y[i]) return x[i] < y[i] ? -1 : 1;
-    return 0;
-}
-
-bool gMcppCompareShielded = false;
-
-// Finds libmcpp's relocation of memcmp in its PLT and points it at graftalMcppCompare.
-int shieldMcppCompare(dl_phdr_info* info, std::size_t, void*) {
-    if (!info->dlpi_name || !std::strstr(info->dlpi_name, "libmcpp")) return 0;
-    const ElfW(Dyn)* dynamic = nullptr;
-    for (int i = 0; i < info->dlpi_phnum; ++i)
-        if (info->dlpi_phdr[i].p_type == PT_DYNAMIC)
-            dynamic =
-                reinterpret_cast<const ElfW(Dyn)*>(info->dlpi_addr + info->dlpi_phdr[i].p_vaddr);
-    if (!dynamic) return 1;
-    ElfW(Addr) relocations = 0, symbols = 0, names = 0;
-    std::size_t size = 0;
-    for (const ElfW(Dyn)* d = dynamic; d->d_tag != DT_NULL; ++d) {
-        if (d->d_tag == DT_JMPREL) relocations = d->d_un.d_ptr;
-        if (d->d_tag == DT_PLTRELSZ) size = d->d_un.d_val;
-        if (d->d_tag == DT_SYMTAB) symbols = d->d_un.d_ptr;
-        if (d->d_tag == DT_STRTAB) names = d->d_un.d_ptr;
-    }
-    // glibc stores these relocated; another loader may leave them relative to the base.
-    auto absolute = [&](ElfW(Addr) a) { return a < info->dlpi_addr ? a + info->dlpi_addr : a; };
-    if (!relocations || !symbols || !names) return 1;
-    const auto* rela = reinterpret_cast<const ElfW(Rela)*>(absolute(relocations));
-    const auto* symbol = reinterpret_cast<const ElfW(Sym)*>(absolute(symbols));
-    const char* name = reinterpret_cast<const char*>(absolute(names));
-    for (std::size_t i = 0; i < size / sizeof(ElfW(Rela)); ++i) {
-        if (std::strcmp(name + symbol[ELF64_R_SYM(rela[i].r_info)].st_name, "memcmp") != 0)
-            continue;
-        auto* slot = reinterpret_cast<void**>(info->dlpi_addr + rela[i].r_offset);
-        // Writable under lazy binding; read-only after relocation with RELRO and BIND_NOW.
-        const long page = ::sysconf(_SC_PAGESIZE);
-        void* start = reinterpret_cast<void*>(reinterpret_cast<std::uintptr_t>(slot) &
-                                              ~static_cast<std::uintptr_t>(page - 1));
-        if (::mprotect(start, static_cast<std::size_t>(page), PROT_READ | PROT_WRITE) != 0)
-            return 1;
-        *slot = reinterpret_cast<void*>(&graftalMcppCompare);
-        gMcppCompareShielded = true;
-        return 1;
-    }
-    return 1;
-}
 
 bool isDirectiveName(std::string_view name) {
     static constexpr std::string_view kNames[] = {"define", "undef",  "include", "if",
@@ -313,116 +255,13 @@ class Workspace {
 
 // ---- the preprocessor's process --------------------------------------------------------
 //
-// mcpp runs in a process forked once and kept: it reads each run's arguments from a socket,
-// runs mcpp_lib_main (which resets mcpp's globals itself on entry: mcpp as a library is
-// meant to be called again) and answers how many bytes it wrote. Forking for every run
-// cost more than many a derivation: fork and exit of a 90 MB process (a Dask worker, a
-// Python with pandas) take 20-30 ms of CPU, a small sweep point 15 ms. A run stopped for
-// its size or time, or a crash, ends the process; the next run starts another.
-
-// In the preprocessor's process: where mcpp's output and messages go, and how much of each
-// this run wrote.
-int gChildFd[2] = {-1, -1};
-std::uint64_t gChildWritten[2] = {0, 0};
-
-void writeAll(int fd, const char* p, std::size_t n) {
-    while (n > 0) {
-        ssize_t w = ::write(fd, p, n);
-        if (w < 0) {
-            if (errno == EINTR) continue;
-            ::_exit(3);  // the parent stopped listening
-        }
-        p += w;
-        n -= static_cast<std::size_t>(w);
-    }
-}
-
-void childWrite(OUTDEST od, const char* p, std::size_t n) {
-    const int k = od == OUT ? 0 : 1;
-    writeAll(gChildFd[k], p, n);
-    gChildWritten[k] += n;
-}
-
-extern "C" int childPutc(int c, OUTDEST od) {
-    char ch = static_cast<char>(c);
-    childWrite(od, &ch, 1);
-    return c;
-}
-
-extern "C" int childPuts(const char* s, OUTDEST od) {
-    childWrite(od, s, std::strlen(s));
-    return 0;
-}
-
-extern "C" int childPrintf(OUTDEST od, const char* format, ...) {
-    char small[1024];
-    va_list args;
-    va_start(args, format);
-    int n = std::vsnprintf(small, sizeof small, format, args);
-    va_end(args);
-    if (n < 0) return n;
-    if (static_cast<std::size_t>(n) < sizeof small) {
-        childWrite(od, small, static_cast<std::size_t>(n));
-    } else {
-        std::vector<char> big(static_cast<std::size_t>(n) + 1);
-        va_start(args, format);
-        std::vsnprintf(big.data(), big.size(), format, args);
-        va_end(args);
-        childWrite(od, big.data(), static_cast<std::size_t>(n));
-    }
-    return n;
-}
-
-// Reads exactly n bytes; false at the end of the stream or on an error.
-bool readExactly(int fd, void* into, std::size_t n) {
-    auto* p = static_cast<char*>(into);
-    while (n > 0) {
-        ssize_t r = ::read(fd, p, n);
-        if (r < 0 && errno == EINTR) continue;
-        if (r <= 0) return false;
-        p += r;
-        n -= static_cast<std::size_t>(r);
-    }
-    return true;
-}
-
-bool sendAll(int fd, const void* data, std::size_t n) {
-    const auto* p = static_cast<const char*>(data);
-    while (n > 0) {
-        ssize_t w = ::send(fd, p, n, MSG_NOSIGNAL);  // a dead peer is an error, not SIGPIPE
-        if (w < 0 && errno == EINTR) continue;
-        if (w <= 0) return false;
-        p += w;
-        n -= static_cast<std::size_t>(w);
-    }
-    return true;
-}
-
-// The preprocessor's process: one run per request until the parent closes the socket.
-// A request is the argument count and each argument as its length and bytes; the answer is
-// the bytes written to the output and to the messages.
-[[noreturn]] void serveMcpp(int control) {
-    for (;;) {
-        std::uint32_t count = 0;
-        if (!readExactly(control, &count, sizeof count) || count == 0 || count > 4096)
-            ::_exit(0);
-        std::vector<std::string> args(count);
-        for (auto& a : args) {
-            std::uint32_t size = 0;
-            if (!readExactly(control, &size, sizeof size) || size > (1u << 20)) ::_exit(0);
-            a.resize(size);
-            if (!readExactly(control, a.data(), size)) ::_exit(0);
-        }
-        std::vector<char*> argv;
-        for (auto& a : args) argv.push_back(a.data());
-        argv.push_back(nullptr);
-        gChildWritten[0] = gChildWritten[1] = 0;
-        mcpp_set_out_func(childPutc, childPuts, childPrintf);
-        mcpp_lib_main(static_cast<int>(argv.size()) - 1, argv.data());
-        const std::uint64_t written[2] = {gChildWritten[0], gChildWritten[1]};
-        if (!sendAll(control, written, sizeof written)) ::_exit(0);
-    }
-}
+// mcpp runs in a process started once and kept (mcpp_server.hpp): it reads each run's
+// arguments from a socket, runs mcpp_lib_main (which resets mcpp's globals itself on entry:
+// mcpp as a library is meant to be called again) and answers how many bytes it wrote.
+// Starting one for every run cost more than many a derivation: fork and exit of a 90 MB
+// process (a Dask worker, a Python with pandas) take 20-30 ms of CPU, a small sweep point
+// 15 ms. A run stopped for its size or time, or a crash, ends the process; the next run
+// starts another.
 
 // The running preprocessor's process, guarded by gMcppMutex.
 struct McppServer {
@@ -458,6 +297,85 @@ void stopServer(McppServer& s, bool kill, int* status = nullptr) {
     s.pid = -1;
 }
 
+// The program the preprocessor's process runs (graftal-cpp beside the plugins), or empty
+// where there is none (a static build, or a folder without it): then it is a fork of this
+// process.
+const std::string& serverProgram() {
+    static const std::string program = [] {
+#ifdef GRAFTAL_PREPROCESSOR_PROGRAM
+        std::string path = (plugins::pluginFolder() / "graftal-cpp").string();
+        if (::access(path.c_str(), X_OK) == 0) return path;
+#endif
+        return std::string();
+    }();
+    return program;
+}
+
+// Starts graftal-cpp with `ends` (its socket, output and messages) as 3, 4 and 5 and
+// /dev/null as 0-2, and none of this process's other descriptors: a pipe the host writes to
+// must reach its end when the host's does. -1 when it cannot be started.
+pid_t spawnServer(const std::string& program, const int ends[3]) {
+    // Moved above 5 first, so that no dup2 below overwrites an end not yet moved.
+    int high[3] = {-1, -1, -1};
+    for (int k = 0; k < 3; ++k) high[k] = ::fcntl(ends[k], F_DUPFD_CLOEXEC, 10);
+    pid_t pid = -1;
+    posix_spawn_file_actions_t actions;
+    posix_spawnattr_t attributes;
+    if (high[0] >= 0 && high[1] >= 0 && high[2] >= 0 &&
+        ::posix_spawn_file_actions_init(&actions) == 0) {
+        ::posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDWR, 0);
+        ::posix_spawn_file_actions_adddup2(&actions, 0, 1);
+        ::posix_spawn_file_actions_adddup2(&actions, 0, 2);
+        ::posix_spawn_file_actions_adddup2(&actions, high[0], mcpp_server::kControlFd);
+        ::posix_spawn_file_actions_adddup2(&actions, high[1], mcpp_server::kOutputFd);
+        ::posix_spawn_file_actions_adddup2(&actions, high[2], mcpp_server::kMessagesFd);
+        ::posix_spawn_file_actions_addclosefrom_np(&actions, mcpp_server::kMessagesFd + 1);
+        if (::posix_spawnattr_init(&attributes) == 0) {
+            // The host's handlers and blocked signals are not the program's: a crash in mcpp
+            // ends it, and a host that ignores SIGPIPE (Python does) makes it ignored too.
+            sigset_t all, none;
+            ::sigfillset(&all);
+            ::sigemptyset(&none);
+            ::posix_spawnattr_setsigdefault(&attributes, &all);
+            ::posix_spawnattr_setsigmask(&attributes, &none);
+            ::posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGDEF | POSIX_SPAWN_SETSIGMASK);
+            char* argv[] = {const_cast<char*>(program.c_str()),
+                            const_cast<char*>(mcpp_server::kProtocol), nullptr};
+            if (::posix_spawn(&pid, program.c_str(), &actions, &attributes, argv, environ) != 0)
+                pid = -1;
+            ::posix_spawnattr_destroy(&attributes);
+        }
+        ::posix_spawn_file_actions_destroy(&actions);
+    }
+    for (int fd : high)
+        if (fd >= 0) ::close(fd);
+    return pid;
+}
+
+// The same process as a fork of this one, where there is no program to start.
+pid_t forkServer(const int ends[3]) {
+    pid_t pid = ::fork();
+    if (pid != 0) return pid;
+    // The process only runs mcpp: a crash there must end it, not run the handlers the
+    // host installed (a fuzzer's or a sanitizer's would report the host's input).
+    for (int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT, SIGTERM, SIGPIPE})
+        ::signal(sig, SIG_DFL);
+    ::signal(SIGINT, SIG_IGN);  // as graftal-cpp does (graftal_cpp_main.cpp)
+    int keep[3];
+    for (int k = 0; k < 3; ++k) {
+        keep[k] = ::fcntl(ends[k], F_DUPFD, 10);
+        if (keep[k] < 0) ::_exit(4);
+    }
+    int null = ::open("/dev/null", O_RDWR);
+    for (int fd = 0; fd < 3; ++fd)
+        if (null >= 0 && null != fd) ::dup2(null, fd);
+    const int at[3] = {mcpp_server::kControlFd, mcpp_server::kOutputFd, mcpp_server::kMessagesFd};
+    for (int k = 0; k < 3; ++k)
+        if (::dup2(keep[k], at[k]) < 0) ::_exit(4);
+    ::close_range(mcpp_server::kMessagesFd + 1, ~0u, 0);
+    mcpp_server::serve(at[0], at[1], at[2]);
+}
+
 bool startServer(McppServer& s) {
     if (s.owner != ::getpid()) {
         // A copy of a process that had one (a fork of the host): the process is not this
@@ -477,36 +395,10 @@ bool startServer(McppServer& s) {
         ::close(control[0]), ::close(control[1]), ::close(outPipe[0]), ::close(outPipe[1]);
         return false;
     }
-    pid_t pid = ::fork();
-    if (pid == 0) {
-        // The process only runs mcpp: a crash there must end it, not run the handlers the
-        // host installed (a fuzzer's or a sanitizer's would report the host's input).
-        for (int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT, SIGTERM, SIGPIPE})
-            ::signal(sig, SIG_DFL);
-        // Ctrl-C reaches the whole process group: the host decides what it stops (an
-        // interpreter goes on, and so does its preprocessor); a host that ends closes the
-        // socket, and this process ends with it.
-        ::signal(SIGINT, SIG_IGN);
-        // It keeps its three descriptors (as 3, 4, 5) and /dev/null as 0-2, and none of the
-        // host's: a pipe the host writes to must reach its end when the host's does.
-        ::close(control[0]), ::close(outPipe[0]), ::close(errPipe[0]);
-        int keep[3] = {control[1], outPipe[1], errPipe[1]};
-        for (int k = 0; k < 3; ++k) {
-            int moved = ::fcntl(keep[k], F_DUPFD, 10);
-            if (moved < 0) ::_exit(4);
-            ::close(keep[k]);
-            keep[k] = moved;
-        }
-        int null = ::open("/dev/null", O_RDWR);
-        for (int fd = 0; fd < 3; ++fd)
-            if (null >= 0 && null != fd) ::dup2(null, fd);
-        for (int k = 0; k < 3; ++k)
-            if (::dup2(keep[k], 3 + k) < 0) ::_exit(4);
-        ::close_range(6, ~0u, 0);
-        gChildFd[0] = 4;
-        gChildFd[1] = 5;
-        serveMcpp(3);
-    }
+    const int ends[3] = {control[1], outPipe[1], errPipe[1]};
+    pid_t pid = -1;
+    if (!serverProgram().empty()) pid = spawnServer(serverProgram(), ends);
+    if (pid < 0) pid = forkServer(ends);
     ::close(control[1]), ::close(outPipe[1]), ::close(errPipe[1]);
     if (pid < 0) {
         ::close(control[0]), ::close(outPipe[0]), ::close(errPipe[0]);
@@ -534,7 +426,7 @@ bool sendRequest(int fd, const std::vector<std::string>& args) {
         put(static_cast<std::uint32_t>(a.size()));
         request += a;
     }
-    return sendAll(fd, request.data(), request.size());
+    return mcpp_server::sendAll(fd, request.data(), request.size());
 }
 
 // Runs mcpp with `args` in the preprocessor's process (started when there is none), keeping
@@ -598,7 +490,7 @@ McppRun runMcpp(const std::vector<std::string>& args, std::size_t maxOutput) {
             if (k == 0 && static_cast<std::size_t>(n) > room) run.tooLarge = true;
         }
         if (open[2] && (fds[2].revents & (POLLIN | POLLHUP | POLLERR))) {
-            if (readExactly(s.control, answer, sizeof answer))
+            if (mcpp_server::readExactly(s.control, answer, sizeof answer))
                 answered = true;
             else
                 open[2] = false;  // the process ended (mcpp exited or crashed)
@@ -791,7 +683,7 @@ void readOutput(const std::string& output, const Workspace& ws, const std::strin
 
 bool mcppComparesWithinNames() {
     std::lock_guard<std::mutex> lock(gMcppMutex);
-    return gMcppCompareShielded;
+    return mcpp_server::shieldCompare();
 }
 
 bool preprocessSource(std::string_view text, const PreprocessOptions& options, SourceText& out,
@@ -823,8 +715,7 @@ bool preprocessSource(std::string_view text, const PreprocessOptions& options, S
     McppRun run;
     {
         std::lock_guard<std::mutex> lock(gMcppMutex);
-        static std::once_flag shield;
-        std::call_once(shield, [] { ::dl_iterate_phdr(shieldMcppCompare, nullptr); });
+        mcpp_server::shieldCompare();  // for a forked process; graftal-cpp shields its own
         run = runMcpp(args, limit);
     }
     readMessages(run.messages, ws, mainName, diags);
