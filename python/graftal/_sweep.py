@@ -186,10 +186,11 @@ def sweep(model, grid, client=None, *, steps=None, geometry=True, export=None, s
     else:
         # A model pickles as its source (a path, or its text with its overrides): it goes
         # with each task, which costs less than scattering it first, a round trip to every
-        # worker before any work starts.
+        # worker before any work starts. One map() is one message to the scheduler.
         batches = _batches(points, client)
-        futures = [client.submit(run_points, model, [points[i] for i in batch], pure=False,
-                                 **options) for batch in batches]
+        futures = client.map(run_points, [model] * len(batches),
+                             [[points[i] for i in batch] for batch in batches], pure=False,
+                             **options)
         rows = [None] * len(points)
         for batch, done in zip(batches, client.gather(futures)):
             for i, row in zip(batch, done):
