@@ -5,7 +5,7 @@
 
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
-DEBIAN_PACKAGES := cmake g++ make pkg-config ccache libgtest-dev libcli11-dev libcairo2-dev \
+DEBIAN_PACKAGES := cmake g++ make pkg-config ccache libgtest-dev libcli11-dev libcairo2-dev libpng-dev \
                    nlohmann-json3-dev poppler-utils libembree-dev libtinygltf-dev
 # Fractal music: MIDI files (libsmf), audio (FluidSynth and a General MIDI SoundFont),
 # engraved scores (LilyPond).

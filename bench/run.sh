@@ -21,7 +21,9 @@
 #                             models of bench/cpfg/ in three modes, runs alternating;
 #                             ../shared/cpfg-anchor/ says how to build cpfg from vlab's
 #                             sources outside the repository
-#   BENCH_CPFG_RUNS=3         runs per program and mode in the cpfg comparison
+#   BENCH_CPFG_RUNS=3         runs per program and mode in the cpfg comparison; with CPFG
+#                             the row `startup` (bench/startup_versus_cpfg.py) also runs:
+#                             every command on small models, 15 runs each, interleaved
 #   BENCH_ROWS="honda23 pcond22"    run only these rows (keys as in bench/report.py, and
 #                             mesh3d: the 3D turtle and mesher, python: the Python module,
 #                             printed, not in the table);
@@ -274,6 +276,13 @@ if [ -n "${CPFG:-}" ]; then
             --results "$results" --runs "${BENCH_CPFG_RUNS:-3}" "${partial[@]}" \
             ${DOC:+--doc "$DOC"} >/dev/null || say "bench: the cpfg comparison failed"
     fi
+    # Start-up: every command on small models (the book's Fibonacci words, Koch n = 3).
+    if wanted startup; then
+        say "bench: start-up on small models, graftal and cpfg interleaved"
+        python3 "$here/startup_versus_cpfg.py" --graftal "$graftal" --cpfg "$CPFG" \
+            --results "$results" ${DOC:+--doc "$DOC"} >/dev/null ||
+            say "bench: the start-up comparison failed"
+    fi
 fi
 
 # ---- the table ---------------------------------------------------------------------------
@@ -295,4 +304,9 @@ if [ -f "$results/versus-cpfg.md" ]; then
     echo
     echo "graftal and cpfg 6.6 side by side (bench/versus_cpfg.py):"
     cat "$results/versus-cpfg.md"
+fi
+if [ -f "$results/startup.md" ]; then
+    echo
+    echo "Start-up on small models (bench/startup_versus_cpfg.py):"
+    cat "$results/startup.md"
 fi

@@ -89,7 +89,7 @@ set(GRAFTAL_NATIVE_ONLY_SOURCES
   src/output/animation_file.cpp src/output/cairo_writer.cpp
   src/output/derivation_diagram_writer.cpp src/output/derivation_diagram_cairo.cpp
   src/output/gif_encoder.cpp src/output/mp4_encoder.cpp
-  src/output/png_frames_encoder.cpp src/output/raytrace_camera.cpp
+  src/output/png_frames_encoder.cpp src/output/png_encoder.cpp src/output/raytrace_camera.cpp
   src/output/raytrace_renderer.cpp src/output/raytrace_scene.cpp src/output/raytrace_shading.cpp
   src/output/streamed_picture.cpp src/output/streamed_png.cpp src/output/webp_encoder.cpp
   src/pipeline/animation.cpp)

@@ -21,6 +21,8 @@
 #include <vector>
 
 #include "graftal/core/diagnostics.hpp"
+#include "graftal/output/animation_file.hpp"
+#include "graftal/output/framed_picture.hpp"
 #include "graftal/output/output.hpp"
 
 namespace graftal {
@@ -290,6 +292,65 @@ TEST_F(PngWriter, MillionSegmentsRenderQuickly) {
     const double seconds = static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
     EXPECT_LT(seconds, 5.0);
     EXPECT_TRUE(Png(file).ok());
+}
+
+// The byte of a PNG file's header that says its colour type: 2 RGB, 6 RGBA.
+int colourType(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    std::string header(26, '\0');
+    in.read(header.data(), 26);
+    return static_cast<unsigned char>(header[25]);
+}
+
+TEST_F(PngWriter, TheFileHoldsTheDrawnPixelsAndNoAlphaWhenOpaque) {
+    Scene s = triangle(2);
+    s.segments = unitSquare().segments;
+    RenderOptions o;
+    o.width = 97;  // not a multiple of 4 pixels: rows have no padding to lean on
+    o.height = 61;
+    const fs::path file = dir() / "drawn.png";
+    writePng(s, o, file);
+    EXPECT_EQ(colourType(file), 2);
+    const RgbaImage drawn = drawLineArt(s, o, s.bounds());
+    const Png png(file);
+    ASSERT_TRUE(png.ok());
+    ASSERT_EQ(png.width(), 97);
+    int ink = 0;
+    for (int y = 0; y < 61; ++y)
+        for (int x = 0; x < 97; ++x) {
+            const Pixel p = png.at(x, y);
+            const std::uint8_t* d = drawn.at(x, y);
+            ASSERT_EQ(p.r, d[0]) << x << "," << y;
+            ASSERT_EQ(p.g, d[1]) << x << "," << y;
+            ASSERT_EQ(p.b, d[2]) << x << "," << y;
+            ink += p.r < 128;
+        }
+    EXPECT_GT(ink, 50);
+}
+
+TEST_F(PngWriter, TranslucentPixelsKeepTheirAlpha) {
+    RgbaImage image(5, 3);
+    for (int x = 0; x < 5; ++x) {
+        std::uint8_t* p = &image.pixels[(5 + std::size_t(x)) * 4];
+        p[0] = 200, p[1] = 100, p[2] = 50, p[3] = static_cast<std::uint8_t>(x * 60);
+    }
+    const fs::path file = dir() / "translucent.png";
+    writeRgbaPng(image, file);
+    EXPECT_EQ(colourType(file), 6);
+    std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> read(
+        cairo_image_surface_create_from_png(file.c_str()), &cairo_surface_destroy);
+    ASSERT_EQ(cairo_surface_status(read.get()), CAIRO_STATUS_SUCCESS);
+    const unsigned char* row =
+        cairo_image_surface_get_data(read.get()) + cairo_image_surface_get_stride(read.get());
+    for (int x = 0; x < 5; ++x) {
+        std::uint32_t v;
+        std::memcpy(&v, row + 4 * x, 4);
+        const int a = static_cast<int>(v >> 24);
+        EXPECT_EQ(a, x * 60);
+        // Cairo reads it back premultiplied.
+        EXPECT_NEAR(static_cast<int>((v >> 16) & 255), 200 * a / 255, 1);
+        EXPECT_NEAR(static_cast<int>(v & 255), 50 * a / 255, 1);
+    }
 }
 
 TEST_F(PngWriter, ZeroSizeThrowsNamingThePath) {

@@ -3,6 +3,7 @@
 // polygons and segments apart, so turtle order between the two is not available).
 #include <cairo-pdf.h>
 #include <cairo.h>
+#include <sys/mman.h>
 
 #include <algorithm>
 #include <cmath>
@@ -16,6 +17,7 @@
 #include "graftal/core/diagnostics.hpp"
 #include "graftal/output/framed_picture.hpp"
 #include "graftal/output/output.hpp"
+#include "png_encoder.hpp"
 #include "stroke_order.hpp"
 
 namespace graftal {
@@ -36,6 +38,43 @@ constexpr int kSegmentsPerStroke = 50;
 
 using SurfacePtr = std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)>;
 using ContextPtr = std::unique_ptr<cairo_t, decltype(&cairo_destroy)>;
+
+// The pixels of a picture, mapped with their pages already in place. Cairo's own surface
+// takes them from malloc, and painting the background then faults them in one page at a
+// time: an 800 x 800 picture is 625 faults, a quarter of the time of `graftal render` on a
+// small model on a virtual machine, where a fault costs tens of microseconds. One mmap with
+// MAP_POPULATE maps them all in one call. Empty where that fails; the surface then has
+// Cairo's own memory.
+class PopulatedPixels {
+  public:
+    PopulatedPixels(int width, int height) {
+#ifdef MAP_POPULATE
+        stride_ = cairo_format_stride_for_width(CAIRO_FORMAT_ARGB32, width);
+        if (stride_ <= 0) return;
+        bytes_ = static_cast<std::size_t>(stride_) * static_cast<std::size_t>(height);
+        void* p = ::mmap(nullptr, bytes_, PROT_READ | PROT_WRITE,
+                         MAP_PRIVATE | MAP_ANONYMOUS | MAP_POPULATE, -1, 0);
+        if (p != MAP_FAILED) data_ = static_cast<unsigned char*>(p);
+#endif
+    }
+    ~PopulatedPixels() {
+        if (data_) ::munmap(data_, bytes_);
+    }
+    PopulatedPixels(const PopulatedPixels&) = delete;
+    PopulatedPixels& operator=(const PopulatedPixels&) = delete;
+
+    // An image surface on these pixels (or on Cairo's own); destroy it before this.
+    cairo_surface_t* surface(int width, int height) const {
+        return data_ ? cairo_image_surface_create_for_data(data_, CAIRO_FORMAT_ARGB32, width,
+                                                           height, stride_)
+                     : cairo_image_surface_create(CAIRO_FORMAT_ARGB32, width, height);
+    }
+
+  private:
+    unsigned char* data_ = nullptr;
+    std::size_t bytes_ = 0;
+    int stride_ = 0;
+};
 
 Error cairoError(const std::filesystem::path& path, const std::string& what,
                  cairo_status_t status) {
@@ -156,8 +195,8 @@ void writePdf(const Scene& scene, const RenderOptions& o, const std::filesystem:
 void writePng(const Scene& scene, const RenderOptions& o, std::ostream& out,
               const std::filesystem::path& path) {
     checkSize(o, path, kMaxPixelSize);
-    SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, o.width, o.height),
-                       &cairo_surface_destroy);
+    const PopulatedPixels pixels(o.width, o.height);
+    SurfacePtr surface(pixels.surface(o.width, o.height), &cairo_surface_destroy);
     if (auto st = cairo_surface_status(surface.get()); st != CAIRO_STATUS_SUCCESS)
         throw cairoError(path,
                          "cannot create a " + std::to_string(o.width) + "x" +
@@ -170,9 +209,8 @@ void writePng(const Scene& scene, const RenderOptions& o, std::ostream& out,
             throw cairoError(path, "cannot draw the picture", st);
     }
     cairo_surface_flush(surface.get());
-    if (auto st = cairo_surface_write_to_png_stream(surface.get(), writeToStream, &out);
-        st != CAIRO_STATUS_SUCCESS)
-        throw cairoError(path, "cannot write PNG", st);
+    encodeArgbPng(cairo_image_surface_get_data(surface.get()), o.width, o.height,
+                  cairo_image_surface_get_stride(surface.get()), out, path.c_str());
 }
 
 RgbaImage drawLineArt(const Scene& scene, const RenderOptions& o, const Bounds& frame) {

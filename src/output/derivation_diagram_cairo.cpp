@@ -5,12 +5,15 @@
 
 #include <cmath>
 #include <cstdint>
+#include <fstream>
 #include <memory>
 #include <numbers>
 
 #include "diagram_style.hpp"
+#include "graftal/core/atomic_file.hpp"
 #include "graftal/core/diagnostics.hpp"
 #include "graftal/output/derivation_diagram.hpp"
+#include "png_encoder.hpp"
 
 namespace graftal {
 
@@ -106,9 +109,13 @@ void writeDerivationDiagramPng(const DerivationDiagram& d, const std::filesystem
             throw cairoError(path, "cannot draw the derivation", st);
     }
     cairo_surface_flush(surface.get());
-    if (auto st = cairo_surface_write_to_png(surface.get(), path.c_str());
-        st != CAIRO_STATUS_SUCCESS)
-        throw cairoError(path, "cannot write PNG", st);
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    if (!out) throw fileError(path, "cannot open for writing");
+    encodeArgbPng(cairo_image_surface_get_data(surface.get()), static_cast<int>(d.width),
+                  static_cast<int>(d.height), cairo_image_surface_get_stride(surface.get()), out,
+                  path.c_str());
+    out.close();
+    if (!out) throw fileError(path, "cannot write PNG: write failed");
 }
 
 RgbaImage drawDerivationDiagram(const DerivationDiagram& d) {

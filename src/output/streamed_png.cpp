@@ -6,6 +6,7 @@
 
 #include "graftal/core/diagnostics.hpp"
 #include "graftal/output/output.hpp"
+#include "png_encoder.hpp"
 #include "streamed_png.hpp"
 
 namespace graftal {
@@ -126,15 +127,10 @@ void CairoStreamedPng::finish() {
                     std::string("cannot draw the picture: ") + cairo_status_to_string(st));
     cairo_surface_flush(m.surface);
     m.destination.write("PNG", [&](std::ostream& out) {
-        const auto toStream = [](void* closure, const unsigned char* data, unsigned int length) {
-            auto& o = *static_cast<std::ostream*>(closure);
-            o.write(reinterpret_cast<const char*>(data), length);
-            return o ? CAIRO_STATUS_SUCCESS : CAIRO_STATUS_WRITE_ERROR;
-        };
-        if (auto st = cairo_surface_write_to_png_stream(m.surface, toStream, &out);
-            st != CAIRO_STATUS_SUCCESS)
-            throw Error(SourceLocation{m.path.string(), 0, 0},
-                        std::string("cannot write PNG: ") + cairo_status_to_string(st));
+        encodeArgbPng(cairo_image_surface_get_data(m.surface),
+                      cairo_image_surface_get_width(m.surface),
+                      cairo_image_surface_get_height(m.surface),
+                      cairo_image_surface_get_stride(m.surface), out, m.path.c_str());
     });
 }
 
