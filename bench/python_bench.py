@@ -11,7 +11,9 @@
    derives and sums model.derive().parameters against one that only derives.
 3. A sweep of POINTS derivations on a LocalCluster of two worker processes against the same
    derivations one after the other in one process, divided by two; and, as the floor under
-   it, the same derivations in two plain processes side by side, half each.
+   it, the same derivations in two plain processes side by side, half each, and each core's
+   own speed (a VM's two virtual CPUs need not run at the same speed). In RUNS rounds, the
+   ratios taken within each round.
 
 Prints one line per measure and writes them as JSON to BUILD_DIR/bench/results/python.json.
 Each time is given as wall seconds and as CPU seconds (user + system, every thread): on a
@@ -22,6 +24,7 @@ import argparse
 import json
 import os
 import pathlib
+import statistics
 import subprocess
 import sys
 import time
@@ -63,7 +66,7 @@ def main():
     parser.add_argument("--steps", type=int, default=20)
     parser.add_argument("--points", type=int, default=100)
     parser.add_argument("--sweep-steps", type=int, default=14)
-    parser.add_argument("--runs", type=int, default=3)
+    parser.add_argument("--runs", type=int, default=5)
     args = parser.parse_args()
     build = args.build.resolve()
     env = dict(os.environ, PYTHONPATH=str(build / "python"))
@@ -115,49 +118,52 @@ def main():
     print(f"python bench: peak RSS derive() {rss_derive:.0f} MiB, with the parameters read "
           f"as NumPy {rss_view:.0f} MiB ({rss_view / rss_derive:.3f}x)")
 
-    # 3. A sweep on two worker processes against one process, one point after the other;
-    # medians of RUNS alternating runs. CPU seconds: the serial run's own, and each worker's
-    # (client.run asks them).
+    # 3. A sweep on two worker processes against one process, one point after the other, in
+    # rounds. Each round also runs, as the floor under the sweep, the same points in two
+    # plain processes side by side (half each, both starting at one instant; the time is
+    # until the later one ends), and measures each core's own speed (a plain loop pinned to
+    # each CPU in turn). On a VM whose virtual CPUs share host cores with other guests, one
+    # core can run at half the speed of the other for seconds at a time: two workers then
+    # cannot finish in half the time of one. Ratios are taken within a round, whose runs
+    # meet the same host, and their medians printed. CPU seconds: the serial run's own, and
+    # the busier worker's (client.run asks them).
     sweep = (
-        "import resource, statistics, sys, time, graftal\n"
+        "import os, resource, statistics, subprocess, sys, time, graftal\n"
         "from distributed import Client, LocalCluster\n"
+        "HALF, SPIN = sys.argv[1], sys.argv[2]\n"
         "def cpu():\n"
         "    r = resource.getrusage(resource.RUSAGE_SELF)\n"
         "    return r.ru_utime + r.ru_stime\n"
+        "def pair():\n"
+        "    start = time.time() + 1.0\n"
+        "    both = [subprocess.Popen([sys.executable, '-c', HALF, str(k), repr(start)],\n"
+        "                             stdout=subprocess.PIPE, text=True) for k in (0, 1)]\n"
+        "    return max(float(p.communicate()[0].split()[-1]) for p in both)\n"
+        "def share():\n"
+        "    cores = sorted(os.sched_getaffinity(0))[:2]\n"
+        "    if len(cores) < 2: return 1.0\n"
+        "    t = [float(subprocess.run(['taskset', '-c', str(c), sys.executable, '-c', SPIN],\n"
+        "         capture_output=True, text=True, check=True).stdout) for c in cores]\n"
+        "    return min(t) / max(t)\n"
         "def main():\n"
         f"    model = graftal.load({str(HONDA)!r})\n"
         f"    grid = {{'R2': [0.5 + 0.4 * k / {args.points} for k in range({args.points})]}}\n"
-        "    serial, parallel, serial_cpu, busiest = [], [], [], []\n"
+        "    rounds = []\n"
         "    with LocalCluster(n_workers=2, threads_per_worker=1, dashboard_address=None) as c, "
         "Client(c) as client:\n"
         f"        graftal.sweep(model, {{'R2': [0.6, 0.7]}}, client, steps=2)  # workers warm\n"
         f"        for _ in range({args.runs}):\n"
         "            c0 = cpu(); t = time.perf_counter()\n"
         f"            graftal.sweep(model, grid, steps={args.sweep_steps})\n"
-        "            serial.append(time.perf_counter() - t); serial_cpu.append(cpu() - c0)\n"
+        "            serial = time.perf_counter() - t; serial_cpu = cpu() - c0\n"
         "            w0 = client.run(cpu); t = time.perf_counter()\n"
         f"            graftal.sweep(model, grid, client, steps={args.sweep_steps})\n"
-        "            parallel.append(time.perf_counter() - t); w1 = client.run(cpu)\n"
-        "            busiest.append(max(w1[w] - w0[w] for w in w1))\n"
-        "    m = statistics.median\n"
-        "    print(m(serial), m(parallel), m(serial_cpu), m(busiest))\n"
+        "            parallel = time.perf_counter() - t; w1 = client.run(cpu)\n"
+        "            busiest = max(w1[w] - w0[w] for w in w1)\n"
+        "            rounds.append((serial, parallel, serial_cpu, busiest, pair(), share()))\n"
+        "    for r in rounds: print(*r)\n"
         "if __name__ == '__main__':\n"
         "    main()\n")
-    out = subprocess.run([sys.executable, "-c", sweep], env=env, check=True,
-                         capture_output=True, text=True).stdout.split()
-    serial, parallel, serial_cpu, busiest = map(float, out[-4:])
-    report["sweep_serial_s"], report["sweep_two_workers_s"] = serial, parallel
-    report["sweep_serial_cpu_s"], report["sweep_busiest_worker_cpu_s"] = serial_cpu, busiest
-    print(f"python bench ({load()}): {args.points}-point sweep (n={args.sweep_steps}): one "
-          f"process {serial:.2f} s, two workers {parallel:.2f} s ({parallel / (serial / 2):.2f}x "
-          f"the serial time halved; medians of {args.runs})")
-    print(f"python bench: in CPU seconds: one process {serial_cpu:.2f}, the busier worker "
-          f"{busiest:.2f} ({busiest / (serial_cpu / 2):.2f}x the serial CPU halved)")
-
-    # 3b. What the machine itself gives two processes side by side, without Dask: each
-    # derives every other point of the grid, one after the other, both starting at one
-    # instant; the time is until the later one ends. On a machine whose two cores slow each
-    # other down (a shared cache, a host's other guests) this is the floor under the sweep.
     half = (
         "import sys, time, graftal\n"
         "from graftal import _sweep\n"
@@ -168,17 +174,35 @@ def main():
         "while time.time() < start: time.sleep(0.001)\n"
         f"_sweep.run_points(model, points[int(sys.argv[1])::2], steps={args.sweep_steps})\n"
         "print(time.time() - start)\n")
-    sides = []
-    for _ in range(args.runs):
-        start = time.time() + 1.5
-        both = [subprocess.Popen([sys.executable, "-c", half, str(k), repr(start)], env=env,
-                                 stdout=subprocess.PIPE, text=True) for k in (0, 1)]
-        sides.append(max(float(p.communicate()[0].split()[-1]) for p in both))
-    side = sorted(sides)[len(sides) // 2]
-    report["two_processes_side_by_side_s"] = side
-    print(f"python bench ({load()}): the same halves in two plain processes side by side: "
-          f"{side:.2f} s ({side / (serial / 2):.2f}x the serial time halved); the sweep on "
-          f"Dask takes {parallel / side:.2f}x that")
+    spin = ("import time\nt = time.perf_counter()\nx = 0\nfor i in range(2_000_000): x += i\n"
+            "print(time.perf_counter() - t)\n")
+    out = subprocess.run([sys.executable, "-c", sweep, half, spin], env=env, check=True,
+                         capture_output=True, text=True).stdout.strip().splitlines()
+    rounds = [tuple(map(float, line.split())) for line in out[-args.runs:]]
+    m = statistics.median
+    serial, parallel = m(r[0] for r in rounds), m(r[1] for r in rounds)
+    serial_cpu, busiest = m(r[2] for r in rounds), m(r[3] for r in rounds)
+    side, slower = m(r[4] for r in rounds), m(r[5] for r in rounds)
+    ratio = m(r[1] / (r[0] / 2) for r in rounds)
+    side_ratio = m(r[4] / (r[0] / 2) for r in rounds)
+    over_side = m(r[1] / r[4] for r in rounds)
+    # With the slower core at share s of the faster, two workers give 1 + s times one.
+    ideal = m(2 / (1 + r[5]) for r in rounds)
+    report["sweep_rounds"] = rounds
+    report["sweep_serial_s"], report["sweep_two_workers_s"] = serial, parallel
+    report["sweep_serial_cpu_s"], report["sweep_busiest_worker_cpu_s"] = serial_cpu, busiest
+    report["sweep_ratio"], report["two_processes_side_by_side_s"] = ratio, side
+    report["two_processes_ratio"], report["sweep_over_two_processes"] = side_ratio, over_side
+    report["slower_core_share"], report["best_possible_sweep_ratio"] = slower, ideal
+    print(f"python bench ({load()}): {args.points}-point sweep (n={args.sweep_steps}): one "
+          f"process {serial:.2f} s, two workers {parallel:.2f} s ({ratio:.2f}x the serial time "
+          f"halved; medians of {args.runs} rounds, the ratio taken within each round)")
+    print(f"python bench: in CPU seconds: one process {serial_cpu:.2f}, the busier worker "
+          f"{busiest:.2f} ({busiest / (serial_cpu / 2):.2f}x the serial CPU halved)")
+    print(f"python bench: the same halves in two plain processes side by side: {side:.2f} s "
+          f"({side_ratio:.2f}x the serial time halved); the sweep on Dask takes {over_side:.2f}x "
+          f"that. The slower core ran at {slower:.2f} of the faster one's speed, so two workers "
+          f"could at best take {ideal:.2f}x the serial time halved")
 
     results = build / "bench" / "results"
     results.mkdir(parents=True, exist_ok=True)
