@@ -301,3 +301,43 @@ TEST(ContextFastPath, RandomSystemsAgreeWithTheGenericPath) {
     }
     EXPECT_GE(usedContextPath, 12) << "too few random systems took the context path";
 }
+
+TEST(ContextFastPath, AGrowingStringIsRewrittenInItsOwnBuffer) {
+    // Hogeweg and Hesper's 2L-system (ABOP fig. 1.31a): every successor has a module, the
+    // longest 8, as long as the padded copies. With room in its buffer, the string of a
+    // step becomes the next one where it is (ContextRewriter::writeOverItself), chunk by
+    // chunk on several threads, and the other buffer is given back.
+    const LSystem ls = parse(
+        "Lsystem: 1\nignore: +-F\naxiom: F1F1F1\n"
+        "0 < 0 > 0 --> 0\n0 < 0 > 1 --> 1[+F1F1]\n0 < 1 > 0 --> 1\n0 < 1 > 1 --> 1\n"
+        "1 < 0 > 0 --> 0\n1 < 0 > 1 --> 1F1\n1 < 1 > 0 --> 0\n1 < 1 > 1 --> 0\n"
+        "* < + > * --> -\n* < - > * --> +\nendlsystem\n");
+    const std::size_t noLimit = std::size_t(1) << 40;
+    RewritingEngine generic(ls, ls.productions, ls.seed, 1);
+    generic.useGenericPathOnly();
+    ModuleString expected = symbolsOf("F1F1F1"), next;
+    for (int k = 1; k <= 45; ++k) {
+        generic.step(expected, next, k, 0, noLimit);
+        std::swap(expected, next);
+    }
+    ASSERT_GT(expected.size(), 200000u);  // past the threshold of parallel chunks
+    for (unsigned threads : {1u, 2u, 3u, 5u}) {
+        RewritingEngine engine(ls, ls.productions, ls.seed, threads);
+        ASSERT_TRUE(engine.usesContextPath());
+        ModuleString s = symbolsOf("F1F1F1"), other;
+        s.rawSymbols().reserve(expected.size() + 8192);
+        int inPlace = 0;
+        for (int k = 1; k <= 45; ++k) {
+            const Symbol* buffer = s.rawSymbols().data();
+            engine.stepConsuming(s, other, k, 0, noLimit);
+            if (other.rawSymbols().data() == buffer) {
+                ++inPlace;
+                EXPECT_EQ(s.rawSymbols().capacity(), 0u) << "the other buffer is kept";
+            }
+            std::swap(s, other);
+        }
+        EXPECT_EQ(inPlace, 45) << threads << " threads";
+        EXPECT_TRUE(s == expected) << threads << " threads: " << s.size() << " modules, expected "
+                                   << expected.size();
+    }
+}

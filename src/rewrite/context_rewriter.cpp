@@ -142,6 +142,7 @@ ContextRewriter::ContextRewriter(const LSystem& ls, const std::vector<Production
             }
             codeStart_[code + 1] = static_cast<std::uint32_t>(codeSymbols_.size());
         }
+        nonShrinking_ = *std::min_element(resultLength_.begin(), resultLength_.end()) >= 1;
         if (!padded_.empty()) {
             codePadded_.assign(256 * kPadded, 0);
             for (std::uint32_t code = 0; code < 256; ++code)
@@ -595,6 +596,64 @@ void ContextRewriter::writeCodes(const std::uint8_t* codes, std::size_t n,
         }
         applied[c] = any;
     });
+}
+
+bool ContextRewriter::growsInPlace(ModuleString& cur, std::size_t total) const {
+    // With room left for the next step's scan slots (fitsInPlace), else that step would
+    // take the path with a byte a module beside the string.
+    return inPlace_ && nonShrinking_ && total >= cur.size() &&
+           total + 1 + kNobodyStride * std::max<std::size_t>(chunks_, 1) <=
+               cur.rawSymbols().capacity();
+}
+
+// Chunk c's codes are first moved to the end of the chunk's output, the chunks from the
+// last to the first (each moves right, onto room the chunks after it have left). Then each
+// chunk writes its successors from the start of its output on: the output of the modules
+// up to i ends where the codes of the modules after i begin at the latest, since each of
+// those writes one module or more. A copy of kPadded symbols is made only while it ends
+// before the next module's code; past that point (the end of the chunk, where the codes
+// catch up with the output) successors are copied exactly.
+bool ContextRewriter::writeOverItself(ModuleString& cur, std::size_t total) {
+    const std::size_t n = cur.size(), chunks = chunks_;
+    std::vector<std::size_t> offsets(chunks + 1, 0), bases(chunks, 0);
+    for (std::size_t c = 0; c < chunks; ++c) offsets[c + 1] = offsets[c] + scans_[c].count;
+    auto& symbols = cur.rawSymbols();
+    symbols.resize(total);  // within its capacity: nothing moves, nothing is initialised
+    Symbol* data = symbols.data();
+    for (std::size_t c = chunks; c-- > 0;) {
+        const std::size_t b = bounds_[c], e = bounds_[c + 1];
+        bases[c] = offsets[c + 1] - (e - b);
+        std::memmove(data + bases[c], data + b, e - b);
+    }
+    const std::uint32_t* length = codeLength_.data();
+    const std::uint32_t* start = codeStart_.data();
+    const Symbol* successors = codeSymbols_.data();
+    const Symbol* padded = codePadded_.empty() ? nullptr : codePadded_.data();
+    const std::uint32_t first = symbolCount_;
+    std::vector<std::uint32_t> applied(chunks, 0);
+    forEachChunk(n, chunks, [&](std::size_t c, std::size_t b, std::size_t e) {
+        const std::uint8_t* pick = data + bases[c] - b;  // pick[i]: module i's code
+        Symbol* o = data + offsets[c];
+        Symbol* end = data + offsets[c + 1];
+        std::uint32_t any = 0;
+        std::size_t i = b;
+        if (padded) {
+            for (; i < e && o + kPadded <= end && o + kPadded <= pick + i + 1; ++i) {
+                const std::uint32_t code = pick[i];
+                std::memcpy(o, padded + code * kPadded, kPadded * sizeof(Symbol));
+                o += length[code];
+                any |= code >= first;
+            }
+        }
+        for (; i < e; ++i) {
+            const std::uint32_t code = pick[i];
+            any |= code >= first;
+            for (std::uint32_t k = start[code]; k < start[code + 1]; ++k) *o++ = successors[k];
+        }
+        applied[c] = any;
+    });
+    inPlace_ = false;  // the string holds no codes any more
+    return std::any_of(applied.begin(), applied.end(), [](std::uint32_t a) { return a != 0; });
 }
 
 bool ContextRewriter::write(const ModuleString& cur, Symbol* out) {

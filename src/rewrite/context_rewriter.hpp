@@ -41,6 +41,16 @@ class ContextRewriter {
     bool fitsInPlace(ModuleString& cur, std::size_t chunks) const;
     // Turns the codes chooseInPlace() wrote back into the string (a step that fails).
     void restore(ModuleString& cur) const;
+    // Whether the string chooseInPlace() coded can become the next one, `total` modules, in
+    // its own buffer (writeOverItself): no successor is empty, so no module's output ends
+    // past its own place once each chunk's codes sit at the end of that chunk's output, and
+    // the buffer holds `total` symbols without moving.
+    bool growsInPlace(ModuleString& cur, std::size_t total) const;
+    // Writes the successors chooseInPlace() chose over the string itself, which becomes the
+    // next string; as write(), false when every module was copied unchanged. The previous
+    // string and the next never both take memory: on a string that grows a quarter a step
+    // (Hogeweg-Hesper), 80 MiB of fresh pages fewer at n = 70.
+    bool writeOverItself(ModuleString& cur, std::size_t total);
     // Writes the successors picked by the last choose() or chooseInPlace() to `out`, which
     // holds as many symbols as it returned. Returns false when every module was copied
     // unchanged.
@@ -111,6 +121,7 @@ class ContextRewriter {
     static void settleLater(Scan& st, std::uint64_t waiting, std::uint32_t row,
                             std::uint32_t right);
     bool scanChunks(std::size_t n, std::size_t chunks, std::uint64_t step);
+    bool nonShrinking_ = false;  // every successor has a module at least
     void writeCodes(const std::uint8_t* codes, std::size_t n,
                     const std::vector<std::size_t>& offsets, std::vector<std::uint32_t>& applied,
                     Symbol* out) const;

@@ -278,14 +278,21 @@ bool RewritingEngine::stepConsuming(ModuleString& cur, ModuleString& next, int s
     if (!inPlace) return step(cur, next, stepNumber, table, memoryLimit);
     table = std::clamp(table, 0, static_cast<int>(tableCount_) - 1);
     const std::size_t total = context_->chooseInPlace(cur, stepNumber, table, chunks);
+    const bool grows = context_->growsInPlace(cur, total);
     try {
         checkLimit(stepNumber, total, 0, 0, cur, memoryLimit);
-        prepareOutput(cur, next, total, 0, false, 0, memoryLimit);
+        if (!grows) prepareOutput(cur, next, total, 0, false, 0, memoryLimit);
     } catch (...) {
         context_->restore(cur);
         throw;
     }
-    return context_->write(cur, next.rawSymbols().data());
+    if (!grows) return context_->write(cur, next.rawSymbols().data());
+    // The next string in the buffer of this one. The other buffer, whose string is two
+    // steps old, is given back: at most one string's pages are held.
+    const bool applied = context_->writeOverItself(cur, total);
+    std::swap(cur, next);
+    cur = ModuleString(next.precision());
+    return applied;
 }
 
 bool RewritingEngine::stepContext(const ModuleString& cur, ModuleString& next, int stepNumber,
