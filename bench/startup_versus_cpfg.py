@@ -21,7 +21,6 @@ with --doc, between <!-- startup:begin --> and <!-- startup:end --> in the doc.
 
 from __future__ import annotations
 
-import argparse
 import os
 import re
 import statistics
@@ -33,6 +32,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from report import fmt_time, loadavg, replace_between_markers  # noqa: E402
+from versus_cpfg import cpfg_missing, side_by_side_arguments  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
@@ -84,14 +84,9 @@ def commands(graftal: str, cpfg: str, work: Path) -> list[tuple[str, str, list[s
 
 
 def main() -> int:
-    ap = argparse.ArgumentParser(description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--graftal", required=True)
-    ap.add_argument("--cpfg", required=True)
-    ap.add_argument("--results", required=True)
-    ap.add_argument("--runs", type=int, default=15)
-    ap.add_argument("--doc", default="")
-    args = ap.parse_args()
+    args = side_by_side_arguments(__doc__, 15).parse_args()
+    if cpfg_missing(args.cpfg):
+        return 2
     results = Path(args.results)
     results.mkdir(parents=True, exist_ok=True)
     env = dict(os.environ)

@@ -373,24 +373,37 @@ def write_doc(doc: Path, md: str) -> None:
               "is left in the results", file=sys.stderr)
 
 
-def main() -> int:
-    ap = argparse.ArgumentParser(description=__doc__,
+def side_by_side_arguments(description: str, runs: int) -> argparse.ArgumentParser:
+    """The options of both side-by-side scripts: the two programs, the results folder, the
+    runs per command and the doc whose table they rewrite."""
+    ap = argparse.ArgumentParser(description=description,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--graftal", required=True)
     ap.add_argument("--cpfg", required=True)
     ap.add_argument("--results", required=True)
-    ap.add_argument("--runs", type=int, default=3)
+    ap.add_argument("--runs", type=int, default=runs)
+    ap.add_argument("--doc", default="")
+    return ap
+
+
+def cpfg_missing(cpfg: str) -> bool:
+    if Path(cpfg).is_file() and os.access(cpfg, os.X_OK):
+        return False
+    print(f"bench: no cpfg at {cpfg} (../shared/cpfg-anchor/ says how to build one)",
+          file=sys.stderr)
+    return True
+
+
+def main() -> int:
+    ap = side_by_side_arguments(__doc__, 3)
     ap.add_argument("--timeout", type=float, default=300)
     ap.add_argument("--rows", default="")
     ap.add_argument("--models", default=str(MODELS),
                     help="a folder with the same file names (e.g. copies at smaller n)")
-    ap.add_argument("--doc", default="")
     ap.add_argument("--report-only", action="store_true",
                     help="rebuild the table from RESULTS/versus-cpfg.json without running")
     args = ap.parse_args()
-    if not Path(args.cpfg).is_file() or not os.access(args.cpfg, os.X_OK):
-        print(f"bench: no cpfg at {args.cpfg} (../shared/cpfg-anchor/ says how to build one)",
-              file=sys.stderr)
+    if cpfg_missing(args.cpfg):
         return 2
     if args.report_only:
         data = json.loads((Path(args.results) / "versus-cpfg.json").read_text())

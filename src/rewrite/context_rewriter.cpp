@@ -564,37 +564,44 @@ std::size_t ContextRewriter::chooseAndCount(const ModuleString& cur, int stepNum
     return total;
 }
 
-// The successors the codes written in place name: every code, a copy included, is a row
-// of the code tables, so the loop does not look at the string's own symbols.
-void ContextRewriter::writeCodes(const std::uint8_t* codes, std::size_t n,
-                                 const std::vector<std::size_t>& offsets,
-                                 std::vector<std::uint32_t>& applied, Symbol* out) const {
+// The successors the codes of modules b..e-1 name (pick[i]: module i's code), written
+// from `o` on up to `end`; true when any is a production's. Every code, a copy included, is
+// a row of the code tables, so the loop does not look at the string's own symbols. Copies
+// of kPadded symbols stop where they could pass `end` and, over the codes themselves
+// (OverItself), where they could reach the next module's code; successors are copied
+// exactly from there on.
+template <bool OverItself>
+bool ContextRewriter::writeChunk(const std::uint8_t* pick, std::size_t b, std::size_t e,
+                                 Symbol* o, const Symbol* end) const {
     const std::uint32_t* length = codeLength_.data();
     const std::uint32_t* start = codeStart_.data();
     const Symbol* successors = codeSymbols_.data();
     const Symbol* padded = codePadded_.empty() ? nullptr : codePadded_.data();
     const std::uint32_t first = symbolCount_;
-    forEachChunk(n, chunks_, [&](std::size_t c, std::size_t b, std::size_t e) {
-        const std::uint8_t* pick = codes;
-        const Symbol* fixed = padded;
-        Symbol* o = out + offsets[c];
-        Symbol* end = o + scans_[c].count;
-        std::uint32_t any = 0;
-        std::size_t i = b;
-        if (fixed) {
-            for (; i < e && o + kPadded <= end; ++i) {
-                const std::uint32_t code = pick[i];
-                std::memcpy(o, fixed + code * kPadded, kPadded * sizeof(Symbol));
-                o += length[code];
-                any |= code >= first;
-            }
-        }
-        for (; i < e; ++i) {
+    std::uint32_t any = 0;
+    std::size_t i = b;
+    if (padded) {
+        for (; i < e && o + kPadded <= end && (!OverItself || o + kPadded <= pick + i + 1); ++i) {
             const std::uint32_t code = pick[i];
+            std::memcpy(o, padded + code * kPadded, kPadded * sizeof(Symbol));
+            o += length[code];
             any |= code >= first;
-            for (std::uint32_t k = start[code]; k < start[code + 1]; ++k) *o++ = successors[k];
         }
-        applied[c] = any;
+    }
+    for (; i < e; ++i) {
+        const std::uint32_t code = pick[i];
+        any |= code >= first;
+        for (std::uint32_t k = start[code]; k < start[code + 1]; ++k) *o++ = successors[k];
+    }
+    return any != 0;
+}
+
+void ContextRewriter::writeCodes(const std::uint8_t* codes, std::size_t n,
+                                 const std::vector<std::size_t>& offsets,
+                                 std::vector<std::uint32_t>& applied, Symbol* out) const {
+    forEachChunk(n, chunks_, [&](std::size_t c, std::size_t b, std::size_t e) {
+        Symbol* o = out + offsets[c];
+        applied[c] = writeChunk<false>(codes, b, e, o, o + scans_[c].count);
     });
 }
 
@@ -625,32 +632,11 @@ bool ContextRewriter::writeOverItself(ModuleString& cur, std::size_t total) {
         bases[c] = offsets[c + 1] - (e - b);
         std::memmove(data + bases[c], data + b, e - b);
     }
-    const std::uint32_t* length = codeLength_.data();
-    const std::uint32_t* start = codeStart_.data();
-    const Symbol* successors = codeSymbols_.data();
-    const Symbol* padded = codePadded_.empty() ? nullptr : codePadded_.data();
-    const std::uint32_t first = symbolCount_;
     std::vector<std::uint32_t> applied(chunks, 0);
     forEachChunk(n, chunks, [&](std::size_t c, std::size_t b, std::size_t e) {
-        const std::uint8_t* pick = data + bases[c] - b;  // pick[i]: module i's code
-        Symbol* o = data + offsets[c];
-        Symbol* end = data + offsets[c + 1];
-        std::uint32_t any = 0;
-        std::size_t i = b;
-        if (padded) {
-            for (; i < e && o + kPadded <= end && o + kPadded <= pick + i + 1; ++i) {
-                const std::uint32_t code = pick[i];
-                std::memcpy(o, padded + code * kPadded, kPadded * sizeof(Symbol));
-                o += length[code];
-                any |= code >= first;
-            }
-        }
-        for (; i < e; ++i) {
-            const std::uint32_t code = pick[i];
-            any |= code >= first;
-            for (std::uint32_t k = start[code]; k < start[code + 1]; ++k) *o++ = successors[k];
-        }
-        applied[c] = any;
+        // pick[i]: module i's code, now at the end of the chunk's output.
+        applied[c] = writeChunk<true>(data + bases[c] - b, b, e, data + offsets[c],
+                                      data + offsets[c + 1]);
     });
     inPlace_ = false;  // the string holds no codes any more
     return std::any_of(applied.begin(), applied.end(), [](std::uint32_t a) { return a != 0; });

@@ -122,6 +122,9 @@ class ContextRewriter {
                             std::uint32_t right);
     bool scanChunks(std::size_t n, std::size_t chunks, std::uint64_t step);
     bool nonShrinking_ = false;  // every successor has a module at least
+    template <bool OverItself>
+    bool writeChunk(const std::uint8_t* pick, std::size_t b, std::size_t e, Symbol* o,
+                    const Symbol* end) const;
     void writeCodes(const std::uint8_t* codes, std::size_t n,
                     const std::vector<std::size_t>& offsets, std::vector<std::uint32_t>& applied,
                     Symbol* out) const;
