@@ -137,7 +137,8 @@ ContextRewriter::ContextRewriter(const LSystem& ls, const std::vector<Production
             } else {
                 decode_[code] = predecessorOf[r];
                 codeLength_[code] = resultLength_[r];
-                codeSymbols_.insert(codeSymbols_.end(), resultSymbols_.begin() + resultStart_[r - 1],
+                codeSymbols_.insert(codeSymbols_.end(),
+                                    resultSymbols_.begin() + resultStart_[r - 1],
                                     resultSymbols_.begin() + resultStart_[r]);
             }
             codeStart_[code + 1] = static_cast<std::uint32_t>(codeSymbols_.size());
@@ -273,8 +274,8 @@ void ContextRewriter::scan(const Symbol* in, std::size_t b, std::size_t e, Scan&
             // A copy written in place is the module's own symbol, which the provisional code
             // still names.
             const std::uint32_t r = cell & 0xFFu;
-            slot[waiting] = static_cast<std::uint8_t>(
-                r ? r + shift : (keep ? decode[slot[waiting]] : 0u));
+            slot[waiting] =
+                static_cast<std::uint8_t>(r ? r + shift : (keep ? decode[slot[waiting]] : 0u));
         }
         count += cell >> 8;
     };
@@ -398,7 +399,8 @@ void ContextRewriter::decide(std::uint64_t step, std::uint64_t slot, std::uint32
     if (tally_)
         ++scans_[c].tally[r ? r : kCopiedTally + in_[position]];
     else
-        slots_[slot] = static_cast<std::uint8_t>(r ? r + shift_ : (keep_ ? decode_[slots_[slot]] : 0u));
+        slots_[slot] =
+            static_cast<std::uint8_t>(r ? r + shift_ : (keep_ ? decode_[slots_[slot]] : 0u));
 }
 
 // Scans the chunks in parallel, then settles in chunk order what each left open. False
@@ -571,8 +573,8 @@ std::size_t ContextRewriter::chooseAndCount(const ModuleString& cur, int stepNum
 // (OverItself), where they could reach the next module's code; successors are copied
 // exactly from there on.
 template <bool OverItself>
-bool ContextRewriter::writeChunk(const std::uint8_t* pick, std::size_t b, std::size_t e,
-                                 Symbol* o, const Symbol* end) const {
+bool ContextRewriter::writeChunk(const std::uint8_t* pick, std::size_t b, std::size_t e, Symbol* o,
+                                 const Symbol* end) const {
     const std::uint32_t* length = codeLength_.data();
     const std::uint32_t* start = codeStart_.data();
     const Symbol* successors = codeSymbols_.data();
@@ -635,8 +637,8 @@ bool ContextRewriter::writeOverItself(ModuleString& cur, std::size_t total) {
     std::vector<std::uint32_t> applied(chunks, 0);
     forEachChunk(n, chunks, [&](std::size_t c, std::size_t b, std::size_t e) {
         // pick[i]: module i's code, now at the end of the chunk's output.
-        applied[c] = writeChunk<true>(data + bases[c] - b, b, e, data + offsets[c],
-                                      data + offsets[c + 1]);
+        applied[c] =
+            writeChunk<true>(data + bases[c] - b, b, e, data + offsets[c], data + offsets[c + 1]);
     });
     inPlace_ = false;  // the string holds no codes any more
     return std::any_of(applied.begin(), applied.end(), [](std::uint32_t a) { return a != 0; });

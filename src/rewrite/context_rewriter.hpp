@@ -55,9 +55,9 @@ class ContextRewriter {
     // holds as many symbols as it returned. Returns false when every module was copied
     // unchanged.
     bool write(const ModuleString& cur, Symbol* out);
-    // choose() in a pass that notes no choice, counting what write() would write: the modules of the next string
-    // by symbol into `counts` (one per symbol), and its length returned. The string of the
-    // last step of `stats` is counted without a byte per module of the string before it.
+    // choose() in a pass that notes no choice, counting what write() would write: the modules of
+    // the next string by symbol into `counts` (one per symbol), and its length returned. The string
+    // of the last step of `stats` is counted without a byte per module of the string before it.
     std::size_t chooseAndCount(const ModuleString& cur, int stepNumber, int table,
                                std::size_t chunks, std::vector<std::uint64_t>& counts);
     // Bytes of the per-module scratch buffer in use (for the memory limit).
