@@ -40,7 +40,14 @@ bool Parser::vectorValue(const SourceLine& line, std::size_t from, Vec3& out) {
             piece, at(line, from + a + (lead == std::string_view::npos ? 0 : lead)), scope, local);
         for (const auto& d : local.items()) diags_.add(d);
         if (e.empty()) return false;
-        v[k] = e.evaluate({});
+        // As in constantValue: a value that cannot be computed (a modulo by zero) is a
+        // diagnostic of the parse, not an exception out of it.
+        try {
+            v[k] = e.evaluate({});
+        } catch (const Error& err) {
+            for (const auto& d : err.diagnostics()) diags_.add(d);
+            return false;
+        }
         if (!std::isfinite(v[k])) {
             diags_.error(at(line, from + a), "not a finite number");
             return false;
