@@ -105,7 +105,7 @@ def main() -> int:
             for i, (_, _, argv) in enumerate(rows):
                 runs[i].append(run_once(argv, env))
         # cpfg finds its preprocessor, vlabcpp, on the PATH; without it cpfg still exits 0,
-        # having read nothing, in half the time. Its string must be there.
+        # having read nothing, and sooner. Its string must be there.
         written = Path(tmp) / "k3.str"
         if not written.exists() or written.stat().st_size == 0:
             print("bench: cpfg wrote no string (is vlabcpp beside it?)", file=sys.stderr)
