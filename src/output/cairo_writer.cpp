@@ -39,12 +39,12 @@ constexpr int kSegmentsPerStroke = 50;
 using SurfacePtr = std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)>;
 using ContextPtr = std::unique_ptr<cairo_t, decltype(&cairo_destroy)>;
 
-// The pixels of a picture, mapped with their pages already in place. Cairo's own surface
-// takes them from malloc, and painting the background then faults them in one page at a
-// time: an 800 x 800 picture is 625 faults, a quarter of the time of `graftal render` on a
-// small model on a virtual machine, where a fault costs tens of microseconds. One mmap with
-// MAP_POPULATE maps them all in one call. Empty where that fails; the surface then has
-// Cairo's own memory.
+// The pixels of a picture (a PNG, an animation's frame), mapped with their pages already in
+// place. Cairo's own surface takes them from malloc, and painting the background then
+// faults them in one page at a time: an 800 x 800 picture is 625 faults, a quarter of the
+// time of `graftal render` on a small model on a virtual machine, where a fault costs tens
+// of microseconds. One mmap with MAP_POPULATE maps them all in one call. Empty where that
+// fails; the surface then has Cairo's own memory.
 class PopulatedPixels {
   public:
     PopulatedPixels(int width, int height) {
@@ -216,8 +216,8 @@ void writePng(const Scene& scene, const RenderOptions& o, std::ostream& out,
 RgbaImage drawLineArt(const Scene& scene, const RenderOptions& o, const Bounds& frame) {
     const std::filesystem::path memory("image in memory");
     checkSize(o, memory, kMaxPixelSize);
-    SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, o.width, o.height),
-                       &cairo_surface_destroy);
+    const PopulatedPixels pixels(o.width, o.height);
+    SurfacePtr surface(pixels.surface(o.width, o.height), &cairo_surface_destroy);
     if (auto st = cairo_surface_status(surface.get()); st != CAIRO_STATUS_SUCCESS)
         throw cairoError(memory,
                          "cannot create a " + std::to_string(o.width) + "x" +
